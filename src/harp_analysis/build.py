@@ -1,0 +1,62 @@
+"""``make figures``: execute every notebook headless, then render the gallery and the ledger.
+
+Notebooks run in memory from their own folder (as nbmake runs them) and are never rewritten,
+so the committed notebooks stay free of outputs. Figures land in ``figures/`` (or in
+``HARP_ANALYSIS_FIGURES_DIR``) through :func:`harp_analysis.plotting.save_figure`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+from . import paths
+from .ledger import render_claims
+from .registry import render_gallery
+
+__all__ = ["notebooks", "execute_notebook", "main"]
+
+
+def notebooks() -> list[Path]:
+    """Every notebook of the project, in chapter order."""
+    return sorted(paths.NOTEBOOKS_DIR.glob("*.ipynb"))
+
+
+def execute_notebook(path: Path, figures_dir: Path | None = None, timeout_s: int = 600) -> float:
+    """Run notebook ``path`` in a fresh kernel from its own folder; return the seconds it took.
+
+    ``figures_dir`` redirects :func:`~harp_analysis.plotting.save_figure` for this run.
+    """
+    import nbformat
+    from nbclient import NotebookClient
+
+    environment = dict(os.environ)
+    if figures_dir:
+        environment["HARP_ANALYSIS_FIGURES_DIR"] = str(figures_dir)
+    start = time.perf_counter()
+    notebook = nbformat.read(path, as_version=4)
+    client = NotebookClient(notebook, timeout=timeout_s, kernel_name="python3",
+                            resources={"metadata": {"path": str(path.parent)}})
+    client.execute(env=environment)  # passed on to the kernel manager's start_kernel
+    return time.perf_counter() - start
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--jobs", type=int, default=2, help="notebooks run at once (default 2)")
+    args = parser.parse_args(argv)
+    with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+        timings = dict(zip(notebooks(), pool.map(execute_notebook, notebooks())))
+    for path, seconds in timings.items():
+        print(f"{seconds:6.1f} s  {path.relative_to(paths.ROOT)}")
+    for written in (render_gallery(), render_claims()):
+        print(f"wrote {written.relative_to(paths.ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,66 @@
+"""Argument checks shared by every public function: bad input fails early, naming the argument."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import numpy as np
+
+__all__ = ["ModelValidityWarning", "finite_array", "check_range", "check_choice"]
+
+
+class ModelValidityWarning(UserWarning):
+    """An input is legal but lies outside the range where a model is valid."""
+
+
+def finite_array(value, name: str) -> np.ndarray:
+    """Return ``value`` as a float64 array, or raise naming ``name`` if it is not finite numbers."""
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be a real number or an array of them; got {value!r}") from exc
+    bad = ~np.isfinite(array)
+    if bad.any():
+        where = "" if array.ndim == 0 else f" at index {tuple(int(i) for i in np.argwhere(bad)[0])}"
+        raise ValueError(f"{name} must be finite; got {array[bad].flat[0]}{where}")
+    return array
+
+
+def check_range(
+    array: np.ndarray,
+    name: str,
+    *,
+    low: float | None = None,
+    high: float | None = None,
+    low_inclusive: bool = True,
+    high_inclusive: bool = True,
+    unit: str = "",
+) -> np.ndarray:
+    """Raise ``ValueError`` naming ``name`` if any element of ``array`` is outside the interval."""
+    too_low = np.zeros(np.shape(array), bool)
+    too_high = np.zeros(np.shape(array), bool)
+    if low is not None:
+        too_low = array < low if low_inclusive else array <= low
+    if high is not None:
+        too_high = array > high if high_inclusive else array >= high
+    bad = too_low | too_high
+    if np.any(bad):
+        interval = (
+            ("[" if low_inclusive else "(")
+            + ("-inf" if low is None else f"{low:g}")
+            + ", "
+            + ("inf" if high is None else f"{high:g}")
+            + ("]" if high_inclusive else ")")
+        )
+        first = np.asarray(array)[bad].flat[0]
+        suffix = f" {unit}" if unit else ""
+        raise ValueError(f"{name} must lie in {interval}{suffix}; got {first:g}{suffix}")
+    return array
+
+
+def check_choice(value: str, name: str, options: Iterable[str]) -> str:
+    """Return ``value`` if it is one of ``options``; otherwise raise naming ``name`` and the options."""
+    options = list(options)
+    if value not in options:
+        raise ValueError(f"unknown {name} {value!r}; expected one of {', '.join(map(repr, options))}")
+    return value
