@@ -180,4 +180,10 @@ def test_unknown_atmosphere_is_named():
     with pytest.raises(ValueError, match="relative_tolerance"):
         atm.agreement_ceiling("two_segment", -0.1)
     with pytest.raises(ValueError, match="space"):
-        atm.fit_exponential(atm.FitDefinition(50e3, 1e3, "cubic"))
+        atm.FitDefinition(50e3, 1e3, "cubic")
+    with pytest.raises(ValueError, match="step_m"):
+        atm.FitDefinition(50e3, 0.0, "log")
+    with pytest.raises(ValueError, match="step_m"):
+        atm.FitDefinition(5e3, 10e3, "log")
+    with pytest.raises(ValueError, match="decay_constant_per_m must be a single number"):
+        atm.exponential_density(0.0, decay_constant_per_m=[1e-4, 2e-4])

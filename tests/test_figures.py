@@ -35,6 +35,8 @@ def test_save_figure_refuses_unregistered_or_fileless_numbers(figures_dir):
         plotting.save_figure(fig, "8.1")
     with pytest.raises(ValueError, match="'1.1'.*no output file"):
         plotting.save_figure(fig, "1.1")
+    with pytest.raises(TypeError, match="fig must be a matplotlib Figure"):
+        plotting.save_figure("figure", "2.1")
 
 
 def test_atmosphere_notebook_regenerates_identical_figures(tmp_path):

@@ -19,13 +19,13 @@ through one interface, :class:`AtmosphereModel`, so the simulations can take any
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cache
 from typing import Callable, Literal
 
 import numpy as np
 
-from .validation import check_choice, check_range, finite_array
+from .validation import check_choice, check_range, finite_array, finite_scalar
 
 __all__ = [
     "SEA_LEVEL_DENSITY_KG_M3",
@@ -60,6 +60,10 @@ _GAS_CONSTANT_J_KG_K = 287.0  # as Appendix A writes it (the standard's is 287.0
 # The reference table: ussa1976 is exact but slow to call per point, so tabulate once.
 _STANDARD_TOP_M = 1_000_000.0
 _STANDARD_STEP_M = 25.0
+
+
+def _positive(value, name: str, unit: str = "") -> float:
+    return check_range(finite_scalar(value, name), name, low=0.0, low_inclusive=False, unit=unit)
 
 
 def _altitudes(altitude_m, *, ceiling_m: float | None = None) -> np.ndarray:
@@ -155,10 +159,8 @@ def exponential_density(
 ) -> np.ndarray:
     """rho0 exp(-k a) of eq 3.11 (kg/m^3); k in 1/m (the text's 0.117 /km is 1.17e-4 /m)."""
     a = _altitudes(altitude_m)
-    k = float(check_range(finite_array(decay_constant_per_m, "decay_constant_per_m"),
-                          "decay_constant_per_m", low=0.0, low_inclusive=False, unit="1/m"))
-    rho0 = float(check_range(finite_array(surface_density_kg_m3, "surface_density_kg_m3"),
-                             "surface_density_kg_m3", low=0.0, low_inclusive=False, unit="kg/m^3"))
+    k = _positive(decay_constant_per_m, "decay_constant_per_m", "1/m")
+    rho0 = _positive(surface_density_kg_m3, "surface_density_kg_m3", "kg/m^3")
     return rho0 * np.exp(-k * a)
 
 
@@ -206,9 +208,8 @@ def agreement_ceiling(
     ``relative_tolerance`` of the 1976 standard's density at every point of a ``step_m`` grid
     from the surface: the range over which the model "holds". ``top_m`` if it never departs."""
     density = get_atmosphere(atmosphere).density
-    tolerance = float(check_range(finite_array(relative_tolerance, "relative_tolerance"),
-                                  "relative_tolerance", low=0.0, low_inclusive=False))
-    grid = np.arange(0.0, top_m + step_m, step_m)
+    tolerance = _positive(relative_tolerance, "relative_tolerance")
+    grid = np.arange(0.0, _positive(top_m, "top_m", "m") + step_m, _positive(step_m, "step_m", "m"))
     outside = np.abs(density(grid) / standard_density(grid) - 1.0) > tolerance
     return float(grid[np.argmax(outside)] - step_m) if outside.any() else top_m
 
@@ -229,7 +230,11 @@ class FitDefinition:
     step_m: float
     space: Literal["linear", "log"]
     rho0_free: bool = False
-    label: str = field(default="", compare=False)
+
+    def __post_init__(self):
+        _positive(self.top_m, "top_m", "m")
+        check_range(_positive(self.step_m, "step_m", "m"), "step_m", high=self.top_m, unit="m")
+        check_choice(self.space, "space", ("linear", "log"))
 
     def altitudes_m(self) -> np.ndarray:
         return np.arange(0.0, self.top_m + self.step_m / 2, self.step_m)
@@ -277,7 +282,6 @@ def fit_exponential(definition: FitDefinition) -> ExponentialFit:
     """
     from scipy.optimize import curve_fit
 
-    check_choice(definition.space, "space", ("linear", "log"))
     altitude = definition.altitudes_m()
     observed = standard_density(altitude)
     rho0 = SEA_LEVEL_DENSITY_KG_M3

@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import matplotlib.pyplot as plt
+from matplotlib.figure import Figure
 
 from .registry import figure_file
 
@@ -43,6 +44,8 @@ def save_figure(fig, number: str) -> Path:
     fixed dpi, with no software or time stamps: saving the same figure twice gives
     byte-identical files.
     """
+    if not isinstance(fig, Figure):
+        raise TypeError(f"fig must be a matplotlib Figure; got {type(fig).__name__}")
     path = figure_file(number)
     path.parent.mkdir(parents=True, exist_ok=True)
     with plt.rc_context(HOUSE_STYLE):

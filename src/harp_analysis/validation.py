@@ -6,7 +6,7 @@ from collections.abc import Iterable
 
 import numpy as np
 
-__all__ = ["ModelValidityWarning", "finite_array", "check_range", "check_choice"]
+__all__ = ["ModelValidityWarning", "finite_array", "finite_scalar", "check_range", "check_choice"]
 
 
 class ModelValidityWarning(UserWarning):
@@ -24,6 +24,14 @@ def finite_array(value, name: str) -> np.ndarray:
         where = "" if array.ndim == 0 else f" at index {tuple(int(i) for i in np.argwhere(bad)[0])}"
         raise ValueError(f"{name} must be finite; got {array[bad].flat[0]}{where}")
     return array
+
+
+def finite_scalar(value, name: str) -> float:
+    """Return ``value`` as a float, or raise naming ``name`` if it is not one finite number."""
+    array = finite_array(value, name)
+    if array.ndim != 0:
+        raise ValueError(f"{name} must be a single number; got an array of shape {array.shape}")
+    return float(array)
 
 
 def check_range(
