@@ -1,6 +1,6 @@
 """Atmospheric density and speed of sound: the models of Chapters 2 A and 3 B and Appendices A and B.
 
-Four models, each vectorised over altitude (m above the spherical Earth's surface) and exposed
+Five models, each vectorised over altitude (m above the spherical Earth's surface) and exposed
 through one interface, :class:`AtmosphereModel`, so the simulations can take any of them by name
 (:func:`get_atmosphere`):
 
@@ -15,6 +15,8 @@ through one interface, :class:`AtmosphereModel`, so the simulations can take any
     The three-layer model inside the Appendix A 3DOF (NASA Glenn's "Earth Atmosphere Model").
 ``exponential``
     rho0 exp(-k a) of eq 3.11, the model behind the Modified Kepler Solution.
+``vacuum``
+    No air at all, to switch drag off in checks against closed-form orbits.
 """
 
 from __future__ import annotations
@@ -87,16 +89,22 @@ def standard_density(altitude_m) -> np.ndarray:
     significant figures up to 90 km; at 100 km the ``ussa1976`` implementation is 0.15 % above
     the printed 5.604e-7 kg/m^3 (see ``tests/test_atmosphere.py``).
     """
-    altitude = _altitudes(altitude_m, ceiling_m=_STANDARD_TOP_M)
+    return _standard_density(_altitudes(altitude_m, ceiling_m=_STANDARD_TOP_M))
+
+
+def _standard_density(a):
     grid, log_density, _ = _standard_table()
-    return np.exp(np.interp(altitude, grid, log_density))
+    return np.exp(np.interp(a, grid, log_density))
 
 
 def standard_speed_of_sound(altitude_m) -> np.ndarray:
     """Speed of sound sqrt(gamma R T) of the 1976 standard (m/s), defined by it up to 86 km."""
-    altitude = _altitudes(altitude_m, ceiling_m=86_000.0)
+    return _standard_speed_of_sound(_altitudes(altitude_m, ceiling_m=86_000.0))
+
+
+def _standard_speed_of_sound(a):
     grid, _, temperature = _standard_table()
-    return np.sqrt(_HEAT_CAPACITY_RATIO * 287.05287 * np.interp(altitude, grid, temperature))
+    return np.sqrt(_HEAT_CAPACITY_RATIO * 287.05287 * np.interp(a, grid, temperature))
 
 
 # --- Eqs 2.1 and 2.2, as coded in Appendix B -------------------------------------------------
@@ -108,7 +116,10 @@ _SEGMENT_BREAK_M = 10_769.0
 
 def two_segment_density(altitude_m) -> np.ndarray:
     """Density (kg/m^3) of the two-segment model, eqs 2.1 (above 10.769 km) and 2.2 (below)."""
-    a = _altitudes(altitude_m)
+    return _two_segment_density(_altitudes(altitude_m))
+
+
+def _two_segment_density(a):
     lower = 1.22581 * np.abs(1.0 - 0.00002257 * np.minimum(a, _SEGMENT_BREAK_M)) ** 4.256
     upper = 0.37454745 * np.exp(-0.00015682 * (a - _SEGMENT_BREAK_M))
     return np.where(a > _SEGMENT_BREAK_M, upper, lower)
@@ -116,15 +127,18 @@ def two_segment_density(altitude_m) -> np.ndarray:
 
 def two_segment_speed_of_sound(altitude_m) -> np.ndarray:
     """Speed of sound (m/s) of eqs 2.1 and 2.2 with Appendix B's constant 518.4 (see above)."""
-    a = _altitudes(altitude_m)
+    return _two_segment_speed_of_sound(_altitudes(altitude_m))
+
+
+def _two_segment_speed_of_sound(a):
     lower = 14.9390 * np.sqrt(518.4 - 0.01170 * np.minimum(a, _SEGMENT_BREAK_M))
     return np.where(a > _SEGMENT_BREAK_M, 295.92987, lower)
 
 
 # --- Appendix A's three layers (NASA Glenn "Earth Atmosphere Model", metric) -----------------
-def _three_layer_state(altitude_m) -> tuple[np.ndarray, np.ndarray]:
+def _three_layer_state(a) -> tuple[np.ndarray, np.ndarray]:
     """Temperature (K) and pressure (kPa) exactly as Appendix A computes them."""
-    a_km = _altitudes(altitude_m) / 1000.0
+    a_km = np.asarray(a) / 1000.0
     troposphere = a_km < 11.0
     lower_stratosphere = (a_km >= 11.0) & (a_km < 25.0)
     temperature = np.select(
@@ -142,13 +156,21 @@ def _three_layer_state(altitude_m) -> tuple[np.ndarray, np.ndarray]:
 
 def three_layer_density(altitude_m) -> np.ndarray:
     """Density (kg/m^3) of Appendix A's atmosphere: p / (0.2869 T), p in kPa."""
-    temperature, pressure = _three_layer_state(altitude_m)
+    return _three_layer_density(_altitudes(altitude_m))
+
+
+def _three_layer_density(a):
+    temperature, pressure = _three_layer_state(a)
     return pressure / (0.2869 * temperature)
 
 
 def three_layer_speed_of_sound(altitude_m) -> np.ndarray:
     """Speed of sound (m/s) of Appendix A: sqrt(1.4 * 287 * T)."""
-    temperature, _ = _three_layer_state(altitude_m)
+    return _three_layer_speed_of_sound(_altitudes(altitude_m))
+
+
+def _three_layer_speed_of_sound(a):
+    temperature, _ = _three_layer_state(a)
     return np.sqrt(_HEAT_CAPACITY_RATIO * _GAS_CONSTANT_J_KG_K * temperature)
 
 
@@ -158,35 +180,55 @@ def exponential_density(
     surface_density_kg_m3: float = SEA_LEVEL_DENSITY_KG_M3,
 ) -> np.ndarray:
     """rho0 exp(-k a) of eq 3.11 (kg/m^3); k in 1/m (the text's 0.117 /km is 1.17e-4 /m)."""
-    a = _altitudes(altitude_m)
     k = _positive(decay_constant_per_m, "decay_constant_per_m", "1/m")
     rho0 = _positive(surface_density_kg_m3, "surface_density_kg_m3", "kg/m^3")
-    return rho0 * np.exp(-k * a)
+    return rho0 * np.exp(-k * _altitudes(altitude_m))
+
+
+def _text_exponential_density(a):
+    return SEA_LEVEL_DENSITY_KG_M3 * np.exp(-TEXT_DECAY_CONSTANT_PER_M * a)
 
 
 @dataclass(frozen=True)
 class AtmosphereModel:
-    """A named density and speed-of-sound pair, the pluggable atmosphere of the simulations."""
+    """A named density and speed-of-sound pair, the pluggable atmosphere of the simulations.
+
+    ``density`` and ``speed_of_sound`` check their altitudes like the module's functions;
+    ``density_kernel`` and ``sound_kernel`` are the unchecked formulas that integration loops
+    call (they accept slightly negative altitudes, which an integrator may probe at impact).
+    """
 
     name: str
-    density: Callable[[np.ndarray], np.ndarray]
-    speed_of_sound: Callable[[np.ndarray], np.ndarray]
+    density_kernel: Callable[[np.ndarray], np.ndarray]
+    sound_kernel: Callable[[np.ndarray], np.ndarray]
     source: str
+    ceiling_m: float | None = None
+    sound_ceiling_m: float | None = None
+
+    def density(self, altitude_m) -> np.ndarray:
+        return self.density_kernel(_altitudes(altitude_m, ceiling_m=self.ceiling_m))
+
+    def speed_of_sound(self, altitude_m) -> np.ndarray:
+        return self.sound_kernel(_altitudes(altitude_m, ceiling_m=self.sound_ceiling_m))
 
 
 _MODELS = {
     model.name: model
     for model in (
-        AtmosphereModel("us1976", standard_density, standard_speed_of_sound,
-                        "US Standard Atmosphere 1976 [47] via ussa1976"),
-        AtmosphereModel("two_segment", two_segment_density, two_segment_speed_of_sound,
+        AtmosphereModel("us1976", _standard_density, _standard_speed_of_sound,
+                        "US Standard Atmosphere 1976 [47] via ussa1976", _STANDARD_TOP_M,
+                        86_000.0),
+        AtmosphereModel("two_segment", _two_segment_density, _two_segment_speed_of_sound,
                         "eqs 2.1-2.2 as coded in Appendix B"),
-        AtmosphereModel("three_layer", three_layer_density, three_layer_speed_of_sound,
+        AtmosphereModel("three_layer", _three_layer_density, _three_layer_speed_of_sound,
                         "Appendix A"),
         # Eq 3.11 defines only a density; where a simulation needs Mach with it (Fig 4.15) the
         # speed of sound of the simulation's own two-segment model is kept.
-        AtmosphereModel("exponential", exponential_density, two_segment_speed_of_sound,
+        AtmosphereModel("exponential", _text_exponential_density, _two_segment_speed_of_sound,
                         "eq 3.11 with k = 0.117 /km; speed of sound of eqs 2.1-2.2"),
+        # No air: drag off, for checks against the closed-form Kepler orbit.
+        AtmosphereModel("vacuum", np.zeros_like, _two_segment_speed_of_sound,
+                        "no air (density zero); speed of sound of eqs 2.1-2.2 for Mach"),
     )
 }
 ATMOSPHERE_NAMES = tuple(_MODELS)
