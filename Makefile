@@ -24,6 +24,7 @@ test: $(STAMP)
 
 benchmark: $(STAMP)
 	$(BIN)/python benchmarks/bench_atmosphere.py
+	$(BIN)/python benchmarks/bench_trajectories.py
 
 clean-venv:
 	rm -rf $(VENV)

@@ -120,7 +120,7 @@ def two_segment_density(altitude_m) -> np.ndarray:
 
 
 def _two_segment_density(a):
-    lower = 1.22581 * np.abs(1.0 - 0.00002257 * np.minimum(a, _SEGMENT_BREAK_M)) ** 4.256
+    lower = 1.22581 * (1.0 - 0.00002257 * np.minimum(a, _SEGMENT_BREAK_M)) ** 4.256
     upper = 0.37454745 * np.exp(-0.00015682 * (a - _SEGMENT_BREAK_M))
     return np.where(a > _SEGMENT_BREAK_M, upper, lower)
 

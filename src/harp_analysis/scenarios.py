@@ -1,0 +1,98 @@
+"""The reference flights of Chapter 2 and the quantities the text states about them.
+
+Chapter 2 A: HP and LP launched at 50 deg and 2022 m/s through the two-segment atmosphere of
+eqs 2.1-2.2 with a 5 m/s cross wind, simulated in 3DOF and 6DOF; Table 4.1 adds the baseline
+cone. Flights are cached, so the notebook and the claims ledger share one run of each.
+Functions take projectile names (see :data:`harp_analysis.projectiles.PROJECTILE_NAMES`) so the
+ledger can call them with plain arguments.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import numpy as np
+import pandas as pd
+
+from . import earth
+from .atmosphere import get_atmosphere
+from .projectiles import get_projectile
+from .threedof import simulate_3dof
+from .validation import check_range, finite_scalar
+
+__all__ = ["REFERENCE_ELEVATION_DEG", "REFERENCE_CROSSWIND_M_S", "reference_3dof",
+           "launch_drag_to_gravity", "drag_to_gravity_crossing_altitude_km",
+           "max_drag_to_gravity_above", "angular_momentum_loss_share_below",
+           "angular_momentum_change_above", "launch_energy_mj"]
+
+REFERENCE_ELEVATION_DEG = 50.0  # Chapter 2 A: theta = 50 deg
+REFERENCE_CROSSWIND_M_S = 5.0   # Chapter 2 A: "a 5 m/s cross wind"
+_FINE_STEP_S = 0.01
+
+
+@cache
+def reference_3dof(projectile: str, cross_wind_m_s: float = REFERENCE_CROSSWIND_M_S,
+                   output_step_s: float = _FINE_STEP_S) -> pd.DataFrame:
+    """The 3DOF flight of ``projectile`` in Chapter 2 A's conditions (Fig 4.8 and Table 4.1
+    fly the same launch "with no wind": ``cross_wind_m_s=0``)."""
+    return simulate_3dof(get_projectile(projectile), REFERENCE_ELEVATION_DEG,
+                         cross_wind_m_s=cross_wind_m_s, output_step_s=output_step_s)
+
+
+def launch_energy_mj(projectile: str) -> float:
+    """Kinetic energy at the nominal launch speed (MJ), Chapters 2 A and 4 B."""
+    return get_projectile(projectile).launch_energy_j / 1e6
+
+
+def launch_drag_to_gravity(projectile: str, atmosphere: str = "two_segment",
+                           gravity_m_s2: float | None = None) -> float:
+    """Drag over weight at the muzzle (Table 4.1): 1/2 rho0 V0^2 Cd(Ma0) A / (m g).
+
+    ``gravity_m_s2`` defaults to the simulations' GM/R^2 (9.7987 m/s^2).
+    """
+    p = get_projectile(projectile)
+    air = get_atmosphere(atmosphere)
+    g = earth.surface_gravity_m_s2() if gravity_m_s2 is None else finite_scalar(gravity_m_s2,
+                                                                                "gravity_m_s2")
+    mach = p.launch_speed_m_s / air.speed_of_sound(0.0)
+    drag = 0.5 * air.density(0.0) * p.launch_speed_m_s**2 * p.drag_law(mach) * p.reference_area_m2
+    return float(drag / (p.mass_kg * g))
+
+
+def _ascent(flight: pd.DataFrame) -> pd.DataFrame:
+    return flight[flight.time_s <= flight.attrs["apogee_time_s"]]
+
+
+def drag_to_gravity_crossing_altitude_km(projectile: str, ratio: float = 1.0) -> float:
+    """Altitude (km) where N = drag/gravity falls through ``ratio`` on the way up (Table 4.1's
+    "altitude where drag = weight" is ``ratio = 1``)."""
+    ratio = check_range(finite_scalar(ratio, "ratio"), "ratio", low=0.0, low_inclusive=False)
+    ascent = _ascent(reference_3dof(projectile, cross_wind_m_s=0.0))
+    below = np.flatnonzero(ascent.drag_to_gravity.to_numpy() < ratio)
+    if below.size == 0 or below[0] == 0:
+        return float("nan")
+    i = below[0]
+    n, a = ascent.drag_to_gravity.to_numpy(), ascent.altitude_m.to_numpy()
+    return float(np.interp(np.log(ratio), np.log(n[[i, i - 1]]), a[[i, i - 1]]) / 1e3)
+
+
+def max_drag_to_gravity_above(projectile: str, altitude_km: float = 40.0) -> float:
+    """Largest N anywhere along the flight above ``altitude_km`` (Chapter 2 A's 1 % claim)."""
+    flight = reference_3dof(projectile)
+    return float(flight.drag_to_gravity[flight.altitude_m > altitude_km * 1e3].max())
+
+
+def angular_momentum_loss_share_below(projectile: str, altitude_km: float = 20.0) -> float:
+    """Share of the ascent's loss of specific angular momentum spent below ``altitude_km``."""
+    ascent = _ascent(reference_3dof(projectile))
+    momentum = ascent.specific_angular_momentum_m2_s.to_numpy()
+    at = np.interp(altitude_km * 1e3, ascent.altitude_m, momentum)
+    return float((momentum[0] - at) / (momentum[0] - momentum[-1]))
+
+
+def angular_momentum_change_above(projectile: str, altitude_km: float = 40.0) -> float:
+    """Relative change of specific angular momentum while the flight is above ``altitude_km``
+    (the "approximately constant" stretch of Fig 2.10)."""
+    flight = reference_3dof(projectile)
+    momentum = flight.specific_angular_momentum_m2_s[flight.altitude_m > altitude_km * 1e3]
+    return float((momentum.max() - momentum.min()) / momentum.max())
