@@ -59,6 +59,15 @@ def test_verdict_rules(tmp_path, x, verdict, explanation, extra, ok):
     assert (not ledger.verdict_problems(ledger.evaluate(claim))) is ok
 
 
+@pytest.mark.parametrize("x, bound, ok", [(0.5, "upper", True), (1.5, "upper", False),
+                                          (1.5, "lower", True), (0.5, "lower", False)])
+def test_bounds_count_only_the_wrong_side(tmp_path, x, bound, ok):
+    path = _write(tmp_path, ROW.format(x=x, verdict="reproduces", explanation="",
+                                       extra=f'bound = "{bound}"'))
+    (claim,) = ledger.load_claims(path)
+    assert ledger.evaluate(claim).within_tolerance is ok
+
+
 def test_relative_tolerance(tmp_path):
     path = _write(tmp_path, ROW.format(x=1.01, verdict="reproduces", explanation="",
                                        extra='tolerance_kind = "relative"'))

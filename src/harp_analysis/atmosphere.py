@@ -204,6 +204,8 @@ class AtmosphereModel:
     source: str
     ceiling_m: float | None = None
     sound_ceiling_m: float | None = None
+    #: Altitudes (m) where the formulas jump or kink; integrators step onto them.
+    breakpoints_m: tuple[float, ...] = ()
 
     def density(self, altitude_m) -> np.ndarray:
         return self.density_kernel(_altitudes(altitude_m, ceiling_m=self.ceiling_m))
@@ -217,11 +219,12 @@ _MODELS = {
     for model in (
         AtmosphereModel("us1976", _standard_density, _standard_speed_of_sound,
                         "US Standard Atmosphere 1976 [47] via ussa1976", _STANDARD_TOP_M,
-                        86_000.0),
+                        86_000.0, (11_000.0, 20_000.0, 32_000.0, 47_000.0, 51_000.0, 71_000.0,
+                                   86_000.0)),
         AtmosphereModel("two_segment", _two_segment_density, _two_segment_speed_of_sound,
-                        "eqs 2.1-2.2 as coded in Appendix B"),
+                        "eqs 2.1-2.2 as coded in Appendix B", breakpoints_m=(_SEGMENT_BREAK_M,)),
         AtmosphereModel("three_layer", _three_layer_density, _three_layer_speed_of_sound,
-                        "Appendix A"),
+                        "Appendix A", breakpoints_m=(11_000.0, 25_000.0)),
         # Eq 3.11 defines only a density; where a simulation needs Mach with it (Fig 4.15) the
         # speed of sound of the simulation's own two-segment model is kept.
         AtmosphereModel("exponential", _text_exponential_density, _two_segment_speed_of_sound,

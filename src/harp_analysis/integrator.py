@@ -20,7 +20,7 @@ from typing import Callable
 import numpy as np
 from scipy.integrate import DOP853
 
-__all__ = ["Event", "Solution", "integrate_batch", "hermite"]
+__all__ = ["Event", "Breakpoint", "Solution", "integrate_batch", "hermite"]
 
 _A, _B, _C, _E3, _E5 = DOP853.A, DOP853.B, DOP853.C, DOP853.E3, DOP853.E5
 _STAGES = DOP853.n_stages
@@ -39,6 +39,17 @@ class Event:
     function: Callable[[np.ndarray, np.ndarray], np.ndarray]
     terminal: bool = False
     after_s: float = 0.0
+
+
+@dataclass(frozen=True)
+class Breakpoint:
+    """A surface ``function(t, y) = 0`` where the equations are not smooth (an atmosphere's
+    layer boundary). The error estimate of a step across a kink or jump can pass a badly wrong
+    step (metres, on these flights), so a trial step that crosses one is cut to end just short
+    of it; the next step starts at the boundary, where the error control sees the jump at once
+    and takes the small steps it needs to cross."""
+
+    function: Callable[[np.ndarray, np.ndarray], np.ndarray]
 
 
 @dataclass
@@ -81,16 +92,63 @@ def hermite(t0, t1, y0, y1, a0, a1, t):
     return np.concatenate([position, velocity])
 
 
-def _locate(event, t0, t1, y0, y1, a0, a1, resolution_s=1e-8):
-    """Bisect ``event`` on the Hermite interpolant between t0 and t1 (vectorised) to within
-    ``resolution_s``, a micrometre or less at the speeds of these flights."""
-    low, high = t0.copy(), t1.copy()
-    for _ in range(int(np.ceil(np.log2(np.max(t1 - t0) / resolution_s))) + 1):
-        middle = 0.5 * (low + high)
-        positive = event.function(middle, hermite(t0, t1, y0, y1, a0, a1, middle)) > 0
-        low = np.where(positive, middle, low)
-        high = np.where(positive, high, middle)
+_STRADDLE = 1e-6  # a cut step ends this share of itself short of the breakpoint
+_MIN_CUT_S = 1e-7  # a step crossing a breakpoint sooner than this after its start is not cut
+
+
+def _root(function, g0, g1, iterations=12):
+    """Vectorised Illinois (modified regula falsi) root of ``function(s)`` on s in [0, 1],
+    given its values ``g0``, ``g1`` of opposite signs at the ends; returns the end of the
+    final bracket on the far side of the root."""
+    low, high = np.zeros_like(g0), np.ones_like(g0)
+    g_low, g_high = g0.astype(float), g1.astype(float)
+    side = np.zeros(g0.shape, int)
+    for _ in range(iterations):
+        denominator = g_high - g_low
+        middle = np.where(denominator != 0, (low * g_high - high * g_low)
+                          / np.where(denominator != 0, denominator, 1.0), 0.5 * (low + high))
+        middle = np.clip(middle, low, high)
+        g_middle = function(middle)
+        near = np.sign(g_middle) == np.sign(g_low)
+        low, g_low = np.where(near, middle, low), np.where(near, g_middle, g_low)
+        high, g_high = np.where(near, high, middle), np.where(near, g_high, g_middle)
+        # Illinois: halve the stale end's value when the same end moves twice running.
+        g_high = np.where(near & (side == 1), 0.5 * g_high, g_high)
+        g_low = np.where(~near & (side == -1), 0.5 * g_low, g_low)
+        side = np.where(near, 1, -1)
     return high
+
+
+def _crossing_fraction(breakpoint, t0, h, y0, y1, a0, a1):
+    """Where in each trial step (0 to 1) ``breakpoint`` is crossed (Hermite interpolant)."""
+    def along(fraction):
+        t = t0 + fraction * h
+        return breakpoint.function(t, hermite(t0, t0 + h, y0, y1, a0, a1, t))
+    return _root(along, breakpoint.function(t0, y0), breakpoint.function(t0 + h, y1))
+
+
+def _first_step(acceleration, y, a, scale, max_step_s):
+    """Hairer, Norsett and Wanner's starting step (as scipy's ``select_initial_step``)."""
+    f = np.concatenate([y[3:], a])
+    d0 = np.sqrt(np.mean((y / scale) ** 2, axis=0))
+    d1 = np.sqrt(np.mean((f / scale) ** 2, axis=0))
+    h0 = np.where((d0 < 1e-5) | (d1 < 1e-5), 1e-6, 0.01 * d0 / d1)
+    y1 = y + h0 * f
+    f1 = np.concatenate([y1[3:], acceleration(h0, y1, np.arange(y.shape[1]))])
+    d2 = np.sqrt(np.mean(((f1 - f) / scale) ** 2, axis=0)) / h0
+    order = DOP853.order
+    h1 = np.where(np.maximum(d1, d2) <= 1e-15, np.maximum(1e-6, h0 * 1e-3),
+                  (0.01 / np.maximum(d1, d2)) ** (1 / (order + 1)))
+    return np.minimum(np.minimum(100 * h0, h1), max_step_s)
+
+
+def _locate(event, t0, t1, y0, y1, a0, a1):
+    """Time of ``event`` between t0 and t1 on the Hermite interpolant (vectorised)."""
+    def along(fraction):
+        t = t0 + fraction * (t1 - t0)
+        return event.function(t, hermite(t0, t1, y0, y1, a0, a1, t))
+    fraction = _root(along, event.function(t0, y0), event.function(t1, y1), iterations=20)
+    return t0 + fraction * (t1 - t0)
 
 
 def integrate_batch(
@@ -101,7 +159,7 @@ def integrate_batch(
     rtol: float,
     state_scale: np.ndarray,
     events: tuple[Event, ...] = (),
-    first_step_s: float = 1e-2,
+    breakpoints: tuple[Breakpoint, ...] = (),
     max_step_s: float = 20.0,
 ) -> Solution:
     """Integrate ``y' = [velocity, acceleration(t, y, index)]`` for every column of ``y0``.
@@ -115,13 +173,13 @@ def integrate_batch(
     n = y0.shape[1]
     t = np.zeros(n)
     y = np.array(y0, dtype=float)
-    h = np.full(n, first_step_s)
     active = np.ones(n, bool)
     floor = np.asarray(state_scale, dtype=float)[:, None]
     a = acceleration(t, y, np.arange(n))
+    h = _first_step(acceleration, y, a, rtol * np.maximum(np.abs(y), floor), max_step_s)
     records = [(np.arange(n), t.copy(), y.copy(), a.copy())]  # (trajectories, t, y, a) per step
     event_times = {event.name: np.full(n, np.nan) for event in events}
-    evaluations = 1
+    evaluations = 2
     while active.any():
         index = np.flatnonzero(active)
         ti, yi, hi = t[index], y[:, index], np.minimum(h[index], t_max_s - t[index])
@@ -143,8 +201,16 @@ def integrate_batch(
         denominator = np.where(err5 + err3 > 0, err5 + 0.01 * err3, 1.0)
         error = hi * err5 / np.sqrt(denominator * 6)
         accept = error <= 1.0
-        factor = np.clip(0.9 * np.where(error > 0, error, 1e-10) ** _ERROR_EXPONENT, 0.2, 10.0)
+        factor = np.clip(0.9 * np.where(error > 0, error, 1e-10) ** _ERROR_EXPONENT, 0.2, 5.0)
         h[index] = np.minimum(hi * np.where(accept, factor, np.minimum(factor, 1.0)), max_step_s)
+        for breakpoint in breakpoints:
+            before = breakpoint.function(ti, yi)
+            crossed = np.sign(before) != np.sign(breakpoint.function(ti + hi, y_new))
+            if crossed.any():
+                fraction = _crossing_fraction(breakpoint, ti, hi, yi, y_new, a[:, index], a_new)
+                cut = crossed & (fraction * hi > _MIN_CUT_S) & (fraction < 1 - _STRADDLE)
+                accept &= ~cut
+                h[index[cut]] = hi[cut] * fraction[cut] * (1 - 2 * _STRADDLE)
         done = index[accept]
         t_old, y_old, a_old = ti[accept], yi[:, accept], a[:, done]
         t[done] += hi[accept]

@@ -12,6 +12,8 @@ numbers (:func:`verdict_problems`), so a verdict cannot silently go stale:
   explanation.
 
 Tolerances are absolute in the row's unit, or relative when ``tolerance_kind = "relative"``.
+A claim that is a bound ("less than 1 %", "over 4 degrees") sets ``bound = "upper"`` or
+``"lower"``: only a computed value on the wrong side of the text's counts as a deviation.
 """
 
 from __future__ import annotations
@@ -49,6 +51,7 @@ class Claim:
     kwargs: dict = field(default_factory=dict, hash=False)
     field: str | None = None
     scale: float = 1.0
+    bound: str | None = None
 
 
 @dataclass(frozen=True)
@@ -58,8 +61,11 @@ class ClaimResult:
 
     @property
     def deviation(self) -> float:
-        """|computed - text|, relative to the text's value when the tolerance is relative."""
-        difference = abs(self.computed - self.claim.text_value)
+        """|computed - text| (for a bound, only past it), relative to the text's value when
+        the tolerance is relative."""
+        difference = self.computed - self.claim.text_value
+        difference = {"upper": max(difference, 0.0), "lower": max(-difference, 0.0)}.get(
+            self.claim.bound, abs(difference))
         if self.claim.tolerance_kind == "relative":
             return difference / abs(self.claim.text_value)
         return difference
@@ -81,6 +87,8 @@ def _claim(raw: dict, source: Path) -> Claim:
         raise ValueError(f"{where}: verdict {raw['verdict']!r} is not one of {VERDICTS}")
     if raw.get("tolerance_kind", "absolute") not in ("absolute", "relative"):
         raise ValueError(f"{where}: tolerance_kind must be 'absolute' or 'relative'")
+    if raw.get("bound") not in (None, "upper", "lower"):
+        raise ValueError(f"{where}: bound must be 'upper' or 'lower'")
     if ":" not in raw["compute"]:
         raise ValueError(f"{where}: compute must read 'module:function', got {raw['compute']!r}")
     return Claim(**raw)
@@ -164,7 +172,8 @@ def render_claims(target: Path | None = None) -> Path:
         c = r.claim
         tolerance = (f"{c.tolerance:g}" if c.tolerance_kind == "absolute"
                      else f"{c.tolerance:.2%} rel.")
-        lines.append(f"| `{c.id}` | {c.source} | {c.statement} | {_number(c.text_value)} | "
+        text = {"upper": "< ", "lower": "> "}.get(c.bound, "") + _number(c.text_value)
+        lines.append(f"| `{c.id}` | {c.source} | {c.statement} | {text} | "
                      f"{_number(r.computed)} | {c.unit} | {tolerance} | **{c.verdict}** | "
                      f"{c.explanation} |")
     target.parent.mkdir(parents=True, exist_ok=True)

@@ -17,10 +17,13 @@ import pandas as pd
 from . import earth
 from .atmosphere import get_atmosphere
 from .projectiles import get_projectile
+from .sixdof import simulate_6dof
 from .threedof import simulate_3dof
 from .validation import check_range, finite_scalar
 
 __all__ = ["REFERENCE_ELEVATION_DEG", "REFERENCE_CROSSWIND_M_S", "reference_3dof",
+           "reference_6dof", "max_position_difference_km", "swerve",
+           "angle_of_attack_at_apogee_deg",
            "launch_drag_to_gravity", "drag_to_gravity_crossing_altitude_km",
            "max_drag_to_gravity_above", "angular_momentum_loss_share_below",
            "angular_momentum_change_above", "launch_energy_mj"]
@@ -96,3 +99,53 @@ def angular_momentum_change_above(projectile: str, altitude_km: float = 40.0) ->
     flight = reference_3dof(projectile)
     momentum = flight.specific_angular_momentum_m2_s[flight.altitude_m > altitude_km * 1e3]
     return float((momentum.max() - momentum.min()) / momentum.max())
+
+
+@cache
+def reference_6dof(projectile: str, density_altitude: str = "flat") -> pd.DataFrame:
+    """The 6DOF flight of ``projectile`` in Chapter 2 A's conditions (Appendix B's port; its
+    atmosphere at the flat-frame altitude unless ``density_altitude="spherical"``)."""
+    return simulate_6dof(get_projectile(projectile), elevation_deg=REFERENCE_ELEVATION_DEG,
+                         crosswind_m_s=REFERENCE_CROSSWIND_M_S, density_altitude=density_altitude)
+
+
+def _launch_axes(flight: pd.DataFrame, six_dof: bool) -> np.ndarray:
+    """Earth-centred positions (n, 3) on the axes (up, downrange, right) at the launch point.
+
+    3DOF launches from latitude 0, longitude 0 eastward: up = x, downrange = y, right = -z.
+    The 6DOF's flat frame has x downrange, y right, z down, the Earth's centre at z = +R.
+    """
+    if six_dof:
+        return np.column_stack([earth.RADIUS_M - flight.z_m, flight.x_m, flight.y_m])
+    return np.column_stack([flight.x_m, flight.y_m, -flight.z_m])
+
+
+def _common_times(projectile: str, density_altitude: str):
+    six = reference_6dof(projectile, density_altitude)
+    three = reference_3dof(projectile)
+    six = six[six.time_s <= three.time_s.iloc[-1]]
+    positions3 = _launch_axes(three, six_dof=False)
+    at_six = np.column_stack([np.interp(six.time_s, three.time_s, positions3[:, i])
+                              for i in range(3)])
+    return six, three, at_six
+
+
+def max_position_difference_km(projectile: str, density_altitude: str = "flat") -> float:
+    """Largest distance (km) between the 3DOF and 6DOF positions at the same time."""
+    six, _, at_six = _common_times(projectile, density_altitude)
+    return float(np.max(np.linalg.norm(_launch_axes(six, six_dof=True) - at_six, axis=1)) / 1e3)
+
+
+def swerve(projectile: str) -> pd.DataFrame:
+    """Fig 2.7: the 6DOF's cross range minus the 3DOF's at the same time, against range."""
+    six, three, _ = _common_times(projectile, "flat")
+    cross3 = np.interp(six.time_s, three.time_s, three.cross_range_m)
+    return pd.DataFrame({"time_s": six.time_s, "ground_range_m": six.ground_range_m,
+                         "swerve_m": six.cross_range_m - cross3})
+
+
+def angle_of_attack_at_apogee_deg(projectile: str) -> float:
+    """Total angle of attack (deg) of the 6DOF reference flight at apogee (Ch. 4 A)."""
+    flight = reference_6dof(projectile)
+    return float(np.degrees(np.interp(flight.attrs["apogee_time_s"], flight.time_s,
+                                      flight.angle_of_attack_rad)))
