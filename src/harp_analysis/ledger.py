@@ -20,12 +20,12 @@ from __future__ import annotations
 
 import importlib
 import math
-import tomllib
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
 
 from . import paths
+from .registry import load_toml_rows
 
 __all__ = ["Claim", "ClaimResult", "load_claims", "evaluate", "evaluate_all",
            "verdict_problems", "render_claims", "VERDICTS"]
@@ -75,7 +75,7 @@ class ClaimResult:
         return self.deviation <= self.claim.tolerance
 
 
-def _claim(raw: dict, source: Path) -> Claim:
+def _claim(raw: dict, position: int, source: Path) -> Claim:
     where = f"{source.name} claim {raw.get('id', '?')!r}"
     missing = [name for name in _REQUIRED if name not in raw]
     if missing:
@@ -98,13 +98,7 @@ def _claim(raw: dict, source: Path) -> Claim:
 def load_claims(path: Path | None = None) -> tuple[Claim, ...]:
     """Every claim of the ledger, in file order; ids must be unique."""
     path = Path(path) if path else paths.REGISTRY_DIR / "claims.toml"
-    with open(path, "rb") as handle:
-        claims = tuple(_claim(raw, path) for raw in tomllib.load(handle).get("claim", []))
-    ids = [claim.id for claim in claims]
-    duplicates = sorted({i for i in ids if ids.count(i) > 1})
-    if duplicates:
-        raise ValueError(f"{path.name}: duplicate claim ids {duplicates}")
-    return claims
+    return load_toml_rows(path, "claim", _claim, "id")
 
 
 def evaluate(claim: Claim) -> ClaimResult:

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from . import paths
 
-__all__ = ["RegistryEntry", "load_registry", "get_entry", "figure_file", "render_gallery",
+__all__ = ["RegistryEntry", "load_registry", "load_toml_rows", "get_entry", "figure_file", "render_gallery",
            "CLASSES", "STATUSES", "INDEX_FILES"]
 
 CLASSES = ("data", "schematic", "partial", "not reproducible")
@@ -62,18 +62,24 @@ def _entry(raw: dict, position: int, source: Path) -> RegistryEntry:
                          raw["notebook"], raw["file"], raw["status"], raw["reason"])
 
 
+def load_toml_rows(path: Path, table: str, build, key: str) -> tuple:
+    """Rows ``[[table]]`` of the TOML file ``path``, each made by ``build(raw, position,
+    path)``; raises naming the file if two rows share the same ``key`` attribute."""
+    with open(path, "rb") as handle:
+        rows = tuple(build(raw, i, path)
+                     for i, raw in enumerate(tomllib.load(handle).get(table, []), start=1))
+    keys = [getattr(row, key) for row in rows]
+    duplicates = sorted({k for k in keys if keys.count(k) > 1})
+    if duplicates:
+        raise ValueError(f"{path.name}: duplicate {key}s {duplicates}")
+    return rows
+
+
 @cache
 def load_registry(path: Path | None = None) -> tuple[RegistryEntry, ...]:
     """All registry entries, in the dissertation's order."""
     path = Path(path) if path else paths.REGISTRY_DIR / "figures.toml"
-    with open(path, "rb") as handle:
-        items = tomllib.load(handle).get("item", [])
-    entries = tuple(_entry(raw, i, path) for i, raw in enumerate(items, start=1))
-    numbers = [entry.number for entry in entries]
-    duplicates = sorted({n for n in numbers if numbers.count(n) > 1})
-    if duplicates:
-        raise ValueError(f"{path.name}: duplicate numbers {duplicates}")
-    return entries
+    return load_toml_rows(path, "item", _entry, "number")
 
 
 def get_entry(number: str) -> RegistryEntry:
