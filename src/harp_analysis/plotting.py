@@ -9,7 +9,7 @@ from matplotlib.figure import Figure
 
 from .registry import figure_file
 
-__all__ = ["HOUSE_STYLE", "DPI", "new_figure", "save_figure"]
+__all__ = ["HOUSE_STYLE", "DPI", "new_figure", "save_figure", "save_table"]
 
 DPI = 150
 HOUSE_STYLE = {
@@ -50,4 +50,21 @@ def save_figure(fig, number: str) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     with plt.rc_context(HOUSE_STYLE):
         fig.savefig(path, dpi=DPI, metadata=_NO_METADATA, backend="agg")
+    return path
+
+
+def save_table(frame, number: str, note: str = "") -> Path:
+    """Save ``frame`` as dissertation table ``number`` (e.g. ``"Table 4.1"``): a Markdown table
+    under the file name the registry gives, numbers to five significant figures."""
+    from .registry import get_entry
+
+    path = figure_file(number)
+    header = "| | " + " | ".join(map(str, frame.columns)) + " |"
+    lines = [f"# {number}: {get_entry(number).title}", "", note, "", header,
+             "|---" * (len(frame.columns) + 1) + "|"]
+    for index, row in frame.iterrows():
+        cells = (f"{value:.5g}" if isinstance(value, float) else str(value) for value in row)
+        lines.append(f"| {index} | " + " | ".join(cells) + " |")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("\n".join(lines) + "\n")
     return path
