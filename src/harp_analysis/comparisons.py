@@ -14,14 +14,15 @@ from functools import cache
 import numpy as np
 import pandas as pd
 
-from . import mks
+from . import mks, nonlinear_kepler
 from .mks_error import position_errors
 from .projectiles import get_projectile
 from .threedof import simulate_3dof
 from .validation import ModelValidityWarning
 
 __all__ = ["BASELINE_ELEVATIONS_DEG", "VARIANTS", "case", "error_at_apogee_km", "error_ratio",
-           "max_error_change_km", "elevation_error_ratio",
+           "max_error_change_km", "elevation_error_ratio", "initial_natural_frequency",
+           "linearisation_apogee_change_km", "response_ratio",
            "max_error_change_with_terms", "max_cd_change_below", "asymptotic_momentum_error",
            "mks_beta", "launch_error_m"]
 
@@ -136,3 +137,26 @@ def launch_error_m(projectile: str = "baseline", elevation_deg: float = 45.0) ->
 def elevation_error_ratio(high_deg: float = 85.0, low_deg: float = 45.0) -> float:
     """Error at apogee at ``high_deg`` over that at ``low_deg`` (baseline, Fig 4.11)."""
     return error_at_apogee_km("baseline", high_deg) / error_at_apogee_km("baseline", low_deg)
+
+
+def initial_natural_frequency(projectile: str = "HP", elevation_deg: float = 50.0) -> float:
+    """Eq 3.29's natural frequency at launch (rad/rad), Chapter 3 C's "27 rad/rad" for HP."""
+    return nonlinear_kepler.initial_natural_frequency(case(projectile, elevation_deg)[1])
+
+
+def linearisation_apogee_change_km(projectile: str = "HP", elevation_deg: float = 50.0,
+                                   form: str = "eq_3_25") -> float:
+    """Apogee of the unlinearised equation ``form`` minus eq 3.30's (km), Assumption 6."""
+    solution = case(projectile, elevation_deg)[1]
+    return nonlinear_kepler.linearisation_error(solution, form).apogee_m / 1e3
+
+
+def response_ratio(projectile: str = "HP", elevation_deg: float = 50.0,
+                   multiple: float = 1.0) -> float:
+    """Fig 3.4: response of the linearised system (omega_n = 1) over the nonlinear one (omega_n
+    at launch) at the driving frequency ``multiple`` * tau."""
+    solution = case(projectile, elevation_deg)[1]
+    omega = multiple * solution.tau.item()
+    return (nonlinear_kepler.frequency_response(omega, 1.0)
+            / nonlinear_kepler.frequency_response(
+                omega, nonlinear_kepler.initial_natural_frequency(solution)))
