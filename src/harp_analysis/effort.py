@@ -102,18 +102,19 @@ def mks_apogee(speed_m_s, elevation_rad, cd0, mass_kg, area_m2,
     """Apogee altitude (m) of the three-term MKS in straight-line code (eqs 3.22, 3.27, 6.13,
     6.14, 6.6-6.10, 6.4, 6.5), the operations Fig 4.7 counts. Same result as
     :class:`harp_analysis.mks.ModifiedKeplerSolution` (tests/test_effort.py)."""
-    tan_phi = np.tan(elevation_rad)
-    beta = cd0 * rho0 * area_m2 / (2 * k_per_m * mass_kg * np.sin(elevation_rad))
-    tau = k_per_m * r0 * tan_phi
-    h_inf = speed_m_s * r0 * np.cos(elevation_rad) * np.exp(-beta)
+    sin_phi, cos_phi = np.sin(elevation_rad), np.cos(elevation_rad)
+    beta = cd0 * rho0 * area_m2 / (2 * k_per_m * mass_kg * sin_phi)
+    tau = k_per_m * r0 * sin_phi / cos_phi
+    h_inf = speed_m_s * r0 * cos_phi * np.exp(-beta)
     c3 = gm / (h_inf * h_inf)
     c4 = -2 * beta * c3 / (1 + tau * tau)
     c5 = 2 * beta * beta * c3 / (1 + 4 * tau * tau)
-    c1 = -tan_phi / r0 + tau * c4 + 2 * tau * c5
+    c1 = -sin_phi / (cos_phi * r0) + tau * c4 + 2 * tau * c5
     c2 = 1 / r0 - c3 - c4 - c5
-    theta = np.arctan(c1 / c2)
-    decay = np.exp(-tau * theta)
-    u = c1 * np.sin(theta) + c2 * np.cos(theta) + c3 + c4 * decay + c5 * decay * decay
+    # At theta = atan(c1/c2), with c1 and c2 both negative on a suborbital flight,
+    # c1 sin(theta) + c2 cos(theta) = -sqrt(c1^2 + c2^2).
+    decay = np.exp(-tau * np.arctan(c1 / c2))
+    u = c3 - np.sqrt(c1 * c1 + c2 * c2) + c4 * decay + c5 * decay * decay
     return 1 / u - r0
 
 
