@@ -13,16 +13,6 @@ import numpy as np
 from harp_analysis import effort, mks, projectiles, threedof
 
 
-def best_of(function, repeat=5, number=1):
-    best = float("inf")
-    for _ in range(repeat):
-        start = time.perf_counter()
-        for _ in range(number):
-            function()
-        best = min(best, (time.perf_counter() - start) / number)
-    return best
-
-
 def main():
     baseline = projectiles.BASELINE
     n = 1_000_000
@@ -33,16 +23,16 @@ def main():
     many = lambda: mks.ModifiedKeplerSolution(2157.0, elevations, beta, tau,
                                               warn=False).apogee_altitude("eq_6_4")
     straight = lambda: effort.mks_apogee(2157.0, elevations, cd0, 11.6, 0.008)
-    class_rate = n / best_of(many, repeat=3)
-    straight_rate = n / best_of(straight, repeat=3)
+    class_rate = n / effort.best_time(many, repeat=3)
+    straight_rate = n / effort.best_time(straight, repeat=3)
     print(f"MKS apogees per second, {n:,} launches at once: {class_rate:.3g} (class), "
           f"{straight_rate:.3g} (straight-line eqs 6.4-6.10)")
 
     def full_trajectory():
         theta = np.linspace(0.0, solution.impact_angle, 500)
         return solution.altitude(theta), solution.speed(theta), solution.time(theta)
-    mks_full = best_of(full_trajectory, number=20)
-    three = best_of(lambda: threedof.simulate_3dof(baseline, 45.0))
+    mks_full = effort.best_time(full_trajectory, number=20)
+    three = effort.best_time(lambda: threedof.simulate_3dof(baseline, 45.0))
     print(f"one trajectory: MKS (500 points with time of flight) {mks_full * 1e6:.0f} us, "
           f"3DOF {three * 1e3:.1f} ms, ratio {three / mks_full:.0f}")
     print(f"per apogee: 3DOF {three * 1e3:.1f} ms against MKS {1e9 / straight_rate:.1f} ns "

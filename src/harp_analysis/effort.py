@@ -34,7 +34,7 @@ from . import atmosphere, drag, earth, threedof
 from .sixdof import simulate_6dof
 
 __all__ = ["count_flops", "dop853_step_flops", "mks_apogee", "mks_apogee_flops",
-           "effort_table", "orders_of_magnitude"]
+           "effort_table", "orders_of_magnitude", "best_time"]
 
 _TRANSCENDENTAL = {"exp", "log", "log10", "sin", "cos", "tan", "arcsin", "arccos", "arctan",
                    "asin", "acos", "atan", "atan2", "arctan2", "power", "pow"}
@@ -122,7 +122,8 @@ def mks_apogee_flops() -> int:
     return count_flops(mks_apogee)
 
 
-def _seconds(function, repeat=5, number=1):
+def best_time(function, repeat: int = 5, number: int = 1) -> float:
+    """Best of ``repeat`` timings of ``number`` calls of ``function``, per call (s)."""
     best = math.inf
     for _ in range(repeat):
         start = time.perf_counter()
@@ -154,14 +155,14 @@ def effort_table(elevation_deg: float = 50.0) -> pd.DataFrame:
     many = np.full(1_000_000, elevation)
     lookup = 14  # Cd0 from the M829 table: one lookup and the linear interpolation
     rows = [
-        ("6DOF", six_flops, _seconds(lambda: simulate_6dof(HP, elevation_deg=elevation_deg),
+        ("6DOF", six_flops, best_time(lambda: simulate_6dof(HP, elevation_deg=elevation_deg),
                                      repeat=2), six.attrs["apogee_altitude_m"]),
-        ("3DOF", three_flops, _seconds(lambda: threedof.simulate_3dof(HP, elevation_deg)),
+        ("3DOF", three_flops, best_time(lambda: threedof.simulate_3dof(HP, elevation_deg)),
          three.attrs["apogee_altitude_m"]),
         ("MKS (3 terms)", mks_apogee_flops() + lookup,
-         _seconds(lambda: mks_apogee(*inputs), number=1000), float(mks_apogee(*inputs))),
+         best_time(lambda: mks_apogee(*inputs), number=1000), float(mks_apogee(*inputs))),
         ("MKS, a million launches at once (per launch)", mks_apogee_flops() + lookup,
-         _seconds(lambda: mks_apogee(inputs[0], many, *inputs[2:]), repeat=3) / many.size,
+         best_time(lambda: mks_apogee(inputs[0], many, *inputs[2:]), repeat=3) / many.size,
          float(mks_apogee(*inputs))),
     ]
     table = pd.DataFrame(rows, columns=["method", "flops", "seconds", "apogee_m"])
