@@ -29,8 +29,7 @@ def main():
           f"{straight_rate:.3g} (straight-line eqs 6.4-6.10)")
 
     def full_trajectory():
-        theta = np.linspace(0.0, solution.impact_angle, 500)
-        return solution.altitude(theta), solution.speed(theta), solution.time(theta)
+        return solution.sample(np.linspace(0.0, solution.impact_angle, 500))
     mks_full = effort.best_time(full_trajectory, number=20)
     three = effort.best_time(lambda: threedof.simulate_3dof(baseline, 45.0))
     print(f"one trajectory: MKS (500 points with time of flight) {mks_full * 1e6:.0f} us, "

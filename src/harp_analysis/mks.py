@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from functools import cached_property
+from functools import cache, cached_property
 
 import numpy as np
 
@@ -44,7 +44,11 @@ __all__ = ["ModifiedKeplerSolution", "decay_factor_beta", "decay_rate_tau", "for
 BETA_VALIDITY_LIMIT = 0.25
 #: Chapter 3: the Kepler solution "is reasonably valid above 30 km".
 SENSIBLE_ATMOSPHERE_M = 30_000.0
-_GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(8)
+
+
+@cache
+def _gauss_legendre(order: int):
+    return np.polynomial.legendre.leggauss(order)
 
 
 def decay_factor_beta(drag_coefficient, surface_density_kg_m3, area_m2, mass_kg, elevation_rad,
@@ -117,22 +121,24 @@ class ModifiedKeplerSolution:
         return (np.sum(a * decay, axis=1), np.sum(-r * a * decay, axis=1),
                 np.sum(r * r * a * decay, axis=1))
 
+    def _solution(self, theta_rad):
+        """u, du/dtheta and d2u/dtheta2 at ``theta_rad``, shapes (m, k), from one evaluation."""
+        theta = self._theta(theta_rad)
+        sin, cos = np.sin(theta), np.cos(theta)
+        terms, slope, curvature = self._terms(theta)
+        return (self.c1 * sin + self.c2 * cos + terms, self.c1 * cos - self.c2 * sin + slope,
+                -self.c1 * sin - self.c2 * cos + curvature)
+
     def u(self, theta_rad):
         """u = 1/r (1/m) at angular range ``theta_rad`` (eq 3.30's solution)."""
-        theta = self._theta(theta_rad)
-        return self._out(self.c1 * np.sin(theta) + self.c2 * np.cos(theta)
-                         + self._terms(theta)[0])
+        return self._out(self._solution(theta_rad)[0])
 
     def du_dtheta(self, theta_rad):
         """du/dtheta (1/m per rad), eq 6.1 for three terms."""
-        theta = self._theta(theta_rad)
-        return self._out(self.c1 * np.cos(theta) - self.c2 * np.sin(theta)
-                         + self._terms(theta)[1])
+        return self._out(self._solution(theta_rad)[1])
 
     def d2u_dtheta2(self, theta_rad):
-        theta = self._theta(theta_rad)
-        return self._out(-self.c1 * np.sin(theta) - self.c2 * np.cos(theta)
-                         + self._terms(theta)[2])
+        return self._out(self._solution(theta_rad)[2])
 
     def radius(self, theta_rad):
         """Distance from the Earth's centre (m)."""
@@ -150,12 +156,13 @@ class ModifiedKeplerSolution:
 
     def speed(self, theta_rad):
         """Speed (m/s) from eq 4.2: V = h sqrt(u^2 + (du/dtheta)^2)."""
-        return self.angular_momentum(theta_rad) * np.hypot(self.u(theta_rad),
-                                                           self.du_dtheta(theta_rad))
+        u, slope, _ = self._solution(theta_rad)
+        return self.angular_momentum(theta_rad) * self._out(np.hypot(u, slope))
 
     def flight_path_angle(self, theta_rad):
         """Angle of the velocity above the horizontal, tan(phi) = -u'/u (eq 3.28)."""
-        return np.arctan2(-self.du_dtheta(theta_rad), self.u(theta_rad))
+        u, slope, _ = self._solution(theta_rad)
+        return self._out(np.arctan2(-slope, u))
 
     # --- apogee, impact, time ----------------------------------------------------------------
     @cached_property
@@ -202,17 +209,30 @@ class ModifiedKeplerSolution:
                 break
         return self._out(theta[:, 0])
 
-    def time(self, theta_rad, order: int = 8):
+    def sample(self, theta_rad, order: int = 3) -> dict:
+        """A whole trajectory at the (sorted) angles ``theta_rad`` in one pass: arrays of
+        ``theta_rad``, ``ground_range_m``, ``altitude_m``, ``speed_m_s``,
+        ``flight_path_angle_rad`` and ``time_s`` (named as in :mod:`.trajectory`)."""
+        u, slope, _ = self._solution(theta_rad)
+        h = self.angular_momentum(theta_rad)
+        theta = self._out(self._theta(theta_rad))
+        return {"theta_rad": theta, "ground_range_m": theta * self._out(self.radius_m),
+                "altitude_m": self._out(1 / u - self.radius_m),
+                "speed_m_s": h * self._out(np.hypot(u, slope)),
+                "flight_path_angle_rad": self._out(np.arctan2(-slope, u)),
+                "time_s": self.time(theta_rad, order)}
+
+    def time(self, theta_rad, order: int = 3):
         """Time of flight (s) from launch to each ``theta_rad`` (sorted, starting anywhere >= 0),
         eq 3.32: t = integral of dtheta / (u^2 h), by ``order``-point Gauss-Legendre on every
-        interval between consecutive angles (and from 0 to the first)."""
+        interval between consecutive angles (and from 0 to the first). On a grid of a few
+        hundred angles three points per interval are converged to nanoseconds (tests)."""
         theta = self._theta(theta_rad)
         theta = np.broadcast_to(theta, (self.h0.shape[0], theta.shape[1]))
         edges = np.concatenate([np.zeros((theta.shape[0], 1)), theta], axis=1)
         if np.any(np.diff(edges, axis=1) < 0):
             raise ValueError("theta_rad must be sorted and non-negative")
-        nodes, weights = ((_GAUSS_NODES, _GAUSS_WEIGHTS) if order == 8
-                          else np.polynomial.legendre.leggauss(order))
+        nodes, weights = _gauss_legendre(int(order))
         low, high = edges[:, :-1], edges[:, 1:]
         points = (0.5 * (high - low))[:, :, None] * (nodes + 1) + low[:, :, None]
         flat = points.reshape(points.shape[0], -1)
