@@ -14,7 +14,7 @@ from functools import cache
 import numpy as np
 import pandas as pd
 
-from . import mks, nonlinear_kepler
+from . import earth, mks, nonlinear_kepler
 from .mks_error import position_errors
 from .projectiles import get_projectile
 from .threedof import simulate_3dof
@@ -22,7 +22,7 @@ from .validation import ModelValidityWarning
 
 __all__ = ["BASELINE_ELEVATIONS_DEG", "VARIANTS", "case", "error_at_apogee_km", "error_ratio",
            "max_error_change_km", "elevation_error_ratio", "initial_natural_frequency",
-           "linearisation_apogee_change_km", "response_ratio",
+           "linearisation_apogee_change_km", "response_ratio", "radius_change_below",
            "max_error_change_with_terms", "max_cd_change_below", "asymptotic_momentum_error",
            "mks_beta", "launch_error_m"]
 
@@ -160,3 +160,8 @@ def response_ratio(projectile: str = "HP", elevation_deg: float = 50.0,
     return (nonlinear_kepler.frequency_response(omega, 1.0)
             / nonlinear_kepler.frequency_response(
                 omega, nonlinear_kepler.initial_natural_frequency(solution)))
+
+
+def radius_change_below(altitude_km: float = 20.0) -> float:
+    """Relative change of the radius r from r0 up to ``altitude_km`` (Assumption 5)."""
+    return altitude_km * 1e3 / earth.RADIUS_M

@@ -121,9 +121,10 @@ def render_gallery(target: Path | None = None) -> Path:
                      f"| {e.reason} |")
     lines.append("")
     for e in entries:
-        if e.status in ("reproduced", "partial") and e.file.endswith(".png"):
+        if e.status in ("reproduced", "partial"):
+            shown = f"![{e.label}]({e.file})" if e.file.endswith(".png") else f"[{e.file}]({e.file})"
             lines += [f"## {e.label}: {e.title}", "", f"Status: {e.status}. Drawn by "
-                      f"`notebooks/{e.notebook}`.", "", f"![{e.label}]({e.file})", ""]
+                      f"`notebooks/{e.notebook}`.", "", shown, ""]
     target.parent.mkdir(parents=True, exist_ok=True)
     target.write_text("\n".join(lines))
     return target
