@@ -96,18 +96,22 @@ _STRADDLE = 1e-6  # a cut step ends this share of itself short of the breakpoint
 _MIN_CUT_S = 1e-7  # a step crossing a breakpoint sooner than this after its start is not cut
 
 
-def _root(function, g0, g1, iterations=12):
+def _root(function, g0, g1, iterations=30, tolerance=1e-13):
     """Vectorised Illinois (modified regula falsi) root of ``function(s)`` on s in [0, 1],
-    given its values ``g0``, ``g1`` of opposite signs at the ends; returns the end of the
-    final bracket on the far side of the root."""
+    given its values ``g0``, ``g1`` of opposite signs at the ends; returns the last iterate,
+    once the iterates move less than ``tolerance``."""
     low, high = np.zeros_like(g0), np.ones_like(g0)
     g_low, g_high = g0.astype(float), g1.astype(float)
     side = np.zeros(g0.shape, int)
+    previous = np.full(g0.shape, np.nan)
     for _ in range(iterations):
         denominator = g_high - g_low
         middle = np.where(denominator != 0, (low * g_high - high * g_low)
                           / np.where(denominator != 0, denominator, 1.0), 0.5 * (low + high))
         middle = np.clip(middle, low, high)
+        if np.all(np.abs(middle - previous) < tolerance):
+            break
+        previous = middle
         g_middle = function(middle)
         near = np.sign(g_middle) == np.sign(g_low)
         low, g_low = np.where(near, middle, low), np.where(near, g_middle, g_low)
@@ -116,7 +120,7 @@ def _root(function, g0, g1, iterations=12):
         g_high = np.where(near & (side == 1), 0.5 * g_high, g_high)
         g_low = np.where(~near & (side == -1), 0.5 * g_low, g_low)
         side = np.where(near, 1, -1)
-    return high
+    return middle
 
 
 def _crossing_fraction(breakpoint, t0, h, y0, y1, a0, a1):
@@ -147,7 +151,7 @@ def _locate(event, t0, t1, y0, y1, a0, a1):
     def along(fraction):
         t = t0 + fraction * (t1 - t0)
         return event.function(t, hermite(t0, t1, y0, y1, a0, a1, t))
-    fraction = _root(along, event.function(t0, y0), event.function(t1, y1), iterations=20)
+    fraction = _root(along, event.function(t0, y0), event.function(t1, y1))
     return t0 + fraction * (t1 - t0)
 
 
