@@ -54,7 +54,7 @@ __all__ = ["LaunchCorrection", "surface_velocity", "relative_velocity", "misalig
            "speed_ratio_squared", "speed_ratio_squared_eq_5_3", "tangent_speed",
            "tangent_direction", "elevation_azimuth", "initial_angular_momentum",
            "asymptotic_angular_momentum", "launch_correction", "eci_solution",
-           "fit_speed_of_sound_m_s", "fit_drag_area_m2", "appendix_columns"]
+           "fit_speed_of_sound_m_s", "fit_drag_area_m2", "appendix_columns", "site_surface_speed_km_s"]
 
 _Z_AXIS = np.array([0.0, 0.0, 1.0])
 
@@ -303,3 +303,8 @@ def appendix_columns(site: str, *, drag_area_m2: float | None = None,
         "beta": launch.beta,
         "initial_angular_momentum_m2_s": launch.initial_angular_momentum_m2_s,
     })
+
+
+def site_surface_speed_km_s(site: str) -> float:
+    """Speed of the Earth's surface at ``site`` (km/s), eq 6.16's 0.4518 km/s at Barbados."""
+    return float(_norm(surface_velocity(get_site(site).latitude_rad))) / 1e3
