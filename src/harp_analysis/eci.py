@@ -48,7 +48,7 @@ from .atmosphere import TEXT_DECAY_CONSTANT_PER_M
 from .harp_data import load_appendix
 from .sites import get_site
 from .threedof import launch_frame
-from .validation import check_range, finite_array
+from .validation import check_choice, check_range, finite_array
 
 __all__ = ["LaunchCorrection", "surface_velocity", "relative_velocity", "misalignment_angle",
            "speed_ratio_squared", "speed_ratio_squared_eq_5_3", "tangent_speed",
@@ -223,11 +223,14 @@ def launch_correction(speed_m_s, elevation_rad, bearing_rad, latitude_rad, *, dr
 def eci_solution(speed_m_s, elevation_rad, bearing_rad, latitude_rad, *, drag_area_m2, mass_kg,
                  surface_density_kg_m3, decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
                  rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S, radius_m=earth.RADIUS_M,
-                 include_tangent: bool = True, n_terms: int = 3,
+                 include_tangent: bool = True, n_terms: int = 3, decay: str = "printed",
                  warn: bool = True) -> mks.ModifiedKeplerSolution:
     """The ECI Modified Kepler solution (eqs 6.6-6.15): the MKS launched at the corrected speed
     and elevation, beta of eq 6.11, tau of eq 6.12, drive_scale = cos(mu) (Vrel/V)^2 (eqs 6.9-6.10)
-    and decay_scale = cos(mu) (eq 6.14, as printed: see the module docstring)."""
+    and decay_scale = cos(mu) (eq 6.14 as printed, ``decay="printed"``) or cos(mu) (Vrel/V)^2
+    (``decay="consistent"``: the same beta' in the decay as in the driving terms, as eq 3.23
+    requires; see the module docstring)."""
+    check_choice(decay, "decay", ("printed", "consistent"))
     launch = launch_correction(speed_m_s, elevation_rad, bearing_rad, latitude_rad,
                                drag_area_m2=drag_area_m2, mass_kg=mass_kg,
                                surface_density_kg_m3=surface_density_kg_m3,
@@ -239,7 +242,8 @@ def eci_solution(speed_m_s, elevation_rad, bearing_rad, latitude_rad, *, drag_ar
         launch.speed_m_s, launch.elevation_rad, launch.beta,
         mks.decay_rate_tau(launch.elevation_rad, decay_constant_per_m, radius_m),
         n_terms=n_terms, radius_m=radius_m, drive_scale=cos_mu * launch.speed_ratio_squared,
-        decay_scale=cos_mu, warn=warn)
+        decay_scale=cos_mu * (launch.speed_ratio_squared if decay == "consistent" else 1.0),
+        warn=warn)
 
 
 # --- Appendices D and E ------------------------------------------------------------------------
