@@ -1,0 +1,206 @@
+"""Single HARP rounds (Chapter 6 E, Figs 6.7-6.11): the ECI Modified Kepler trajectory of one
+round as an observer on the rotating Earth sees it, the slot for its radar track, and its figure.
+
+Trajectory. The round flies :func:`harp_analysis.eci.eci_solution` from its appendix row (mass,
+muzzle speed) and its site (latitude, gun bearing, 85 deg, surface density) with the Martlet's
+Cd0 A of :func:`harp.martlet_drag_area_m2` and the model of :func:`harp.predicted_apogees`
+(by default V_tangent included, ``decay="consistent"``), so its peak is that apogee. The MKS
+angular range theta is inertial: it lies in the plane of the launch "up" and the corrected
+inertial azimuth (~95 deg at Barbados for the 109 deg gun). The inertial position r(theta)
+(cos theta up + sin theta d_azimuth) at time t(theta) is turned into the Earth-fixed frame by a
+rotation of -omega t about the polar axis, and its ranges are measured from the launch site on the Earth's surface.
+
+Range "as measured by the radar". Ch. 6 E: "the range displayed is the relative range between
+the original launch location and the current position of the projectile as is measured by the
+radar". It is read here as the horizontal distance over the ground from the gun to the point
+below the projectile on the rotating Earth (``radar_range_m`` = ``ground_range_m``): a slant
+range could not be plotted against altitude as in Figs 6.7-6.11 (it is never below the
+altitude), an inertial range would put round 181 ~157 km out instead of the text's ~40 km, and
+the splash range the text compares with is a triangulated distance on the sea. A radar's
+horizontal range slant x cos(elevation) in its tangent plane, (R + h) sin(theta_E), differs from
+the arc R theta_E by about h theta_E: under 0.5 km at apogee, zero at the splash.
+
+Round 181 (:func:`splash_range_km`): the Earth-fixed ground range at the MKS impact is 36.5 km
+(36.4 km down the 109 deg line, 2.2 km to its right) after 319 s of flight, against the text's
+MKS 39.6 km and the observed splash 41.1 km. The Earth's rotation dominates: the inertial arc
+R theta is 178.6 km, of which the site's own eastward travel omega R cos(lat) t (144 km) is most.
+The model matters too: the appendices' variant (no V_tangent, eq 6.14 as printed) gives 18.8 km
+(16.6 down, 8.9 right), because its decay of the inertial angular momentum, co-rotation
+included, removes most of the 157 m/s horizontal speed the gun gives relative to the ground.
+39.6 km itself is not reproduced by any definition tried; the non-rotating MKS (1.80 km/s,
+85 deg, beta of eq 6.11 at 85 deg) lands at 41.2 km.
+
+Radar tracks are not in the dissertation (it cites the HARP reports [11, 12]). Their file schema
+is in ``data/harp/radar/README.md``; :func:`load_radar_track` returns None when a round has no
+file, and no values are ever invented.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from . import earth, eci, harp
+from .harp_data import HarpDataError, load_appendix
+from .paths import HARP_DATA_DIR
+from .plotting import new_figure
+from .sites import get_site
+from .threedof import launch_frame
+from .trajectory import surface_ranges
+from .validation import check_range, finite_scalar
+
+__all__ = ["RADAR_DIR", "RADAR_NAMES", "round_trajectory", "splash_range_km",
+           "load_radar_track", "draw_round_figure"]
+
+RADAR_DIR = HARP_DATA_DIR / "radar"
+#: Ch. 6 B: the MPS-19 at the gun, the M-33 (assumed on Trinidad).
+RADAR_NAMES = ("MPS-19", "M-33")
+_RADAR_HEADER = ("time_s", "altitude_km", "range_km", "radar")
+_KM = 1e3
+
+
+def _round_row(site, round_number):
+    launch_site = get_site(site)
+    number = int(finite_scalar(round_number, "round_number"))
+    table = load_appendix(launch_site.name)
+    rows = table[table.round_number == number]
+    if rows.empty:
+        raise ValueError(f"round {number} is not in the {launch_site.name} apogee table")
+    return launch_site, number, rows.iloc[0]
+
+
+def round_trajectory(site: str, round_number: int, n_points: int = 400, *,
+                     include_tangent: bool = True, decay: str = "consistent") -> pd.DataFrame:
+    """The ECI MKS of ``round_number`` fired from ``site``, launch to impact at ``n_points``
+    equal steps of angular range: ``time_s``, ``altitude_m``, ``inertial_range_m`` (R theta),
+    and on the rotating Earth ``ground_range_m`` (surface arc from the gun), ``downrange_m`` and
+    ``cross_range_m`` (along and right of the gun bearing) and ``radar_range_m`` (= the ground
+    range; module docstring). ``include_tangent`` and ``decay`` as in
+    :func:`harp.predicted_apogees`, whose defaults they share. ValueError for a round not in the
+    site's appendix."""
+    n_points = int(check_range(finite_scalar(n_points, "n_points"), "n_points", low=2))
+    launch_site, _, row = _round_row(site, round_number)
+    kwargs = dict(drag_area_m2=harp.martlet_drag_area_m2(), mass_kg=row.mass_kg,
+                  surface_density_kg_m3=launch_site.surface_density_kg_m3,
+                  include_tangent=include_tangent)
+    launch = (row.muzzle_speed_m_s, launch_site.elevation_rad, launch_site.gun_bearing_rad,
+              launch_site.latitude_rad)
+    solution = eci.eci_solution(*launch, decay=decay, warn=False, **kwargs)
+    azimuth = float(eci.launch_correction(*launch, **kwargs).azimuth_rad)
+    theta = np.linspace(0.0, solution.impact_angle, n_points)
+    sample = solution.sample(theta)
+    up, along_azimuth, _ = launch_frame(launch_site.latitude_rad, 0.0, azimuth)
+    _, along_gun, _ = launch_frame(launch_site.latitude_rad, 0.0, launch_site.gun_bearing_rad)
+    radius = sample["altitude_m"] + earth.RADIUS_M
+    inertial = radius[:, None] * (np.cos(theta)[:, None] * up + np.sin(theta)[:, None] * along_azimuth)
+    turn = -earth.ROTATION_RATE_RAD_S * sample["time_s"]
+    cos, sin = np.cos(turn), np.sin(turn)
+    fixed = np.column_stack([cos * inertial[:, 0] - sin * inertial[:, 1],
+                             sin * inertial[:, 0] + cos * inertial[:, 1], inertial[:, 2]])
+    downrange, cross_range = surface_ranges(fixed, up, along_gun)
+    ground = earth.RADIUS_M * np.arccos(np.clip(fixed @ up / radius, -1.0, 1.0))
+    return pd.DataFrame({"time_s": sample["time_s"], "altitude_m": sample["altitude_m"],
+                         "inertial_range_m": sample["ground_range_m"], "ground_range_m": ground,
+                         "downrange_m": downrange, "cross_range_m": cross_range,
+                         "radar_range_m": ground})
+
+
+def splash_range_km(site: str = "barbados", round_number: int = 181) -> float:
+    """Ground range (km) on the rotating Earth at the MKS impact: 36.5 km for Barbados round
+    181, against the text's 39.6 km (MKS) and 41.1 km (observed splash); module docstring."""
+    return float(round_trajectory(site, round_number).ground_range_m.iloc[-1]) / _KM
+
+
+# --- radar tracks --------------------------------------------------------------------------------
+def _radar_path(site, round_number):
+    return RADAR_DIR / f"{get_site(site).name.lower()}_round_{round_number}.csv"
+
+
+def _radar_field(text, column, where):
+    if column == "radar":
+        if text.strip() not in RADAR_NAMES:
+            raise HarpDataError(f"{where}, column 'radar': {text!r} is not one of {RADAR_NAMES}")
+        return text.strip()
+    try:
+        value = float(text)
+    except ValueError:
+        raise HarpDataError(f"{where}, column {column!r}: could not parse {text!r}") from None
+    if not math.isfinite(value) or value < 0:
+        raise HarpDataError(f"{where}, column {column!r}: {text!r} is not a finite number >= 0")
+    return value
+
+
+def _read_radar(path: Path) -> pd.DataFrame:
+    rows, lines, provenance, header_seen = [], [], [], False
+    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
+        if line.startswith("#"):
+            provenance.append(line[1:].strip())
+            continue
+        if not line.strip():
+            continue
+        fields = line.split(",")
+        where = f"{path} line {number}"
+        if not header_seen:
+            if tuple(f.strip() for f in fields) != _RADAR_HEADER:
+                raise HarpDataError(f"{where}: header {fields} does not match {list(_RADAR_HEADER)}")
+            header_seen = True
+            continue
+        if len(fields) != len(_RADAR_HEADER):
+            column = _RADAR_HEADER[min(len(fields), len(_RADAR_HEADER) - 1)]
+            raise HarpDataError(f"{where}, column {column!r}: expected {len(_RADAR_HEADER)} "
+                                f"fields, got {len(fields)}")
+        rows.append([_radar_field(t, c, where) for c, t in zip(_RADAR_HEADER, fields)])
+        lines.append(number)
+    if not header_seen:
+        raise HarpDataError(f"{path}: no header line")
+    if not any(p.lower().startswith("source:") for p in provenance):
+        raise HarpDataError(f"{path}: no '# source:' provenance comment")
+    frame = pd.DataFrame(rows, columns=list(_RADAR_HEADER))
+    frame = pd.DataFrame({"time_s": frame.time_s.astype(float),
+                          "altitude_m": frame.altitude_km.astype(float) * _KM,
+                          "range_m": frame.range_km.astype(float) * _KM,
+                          "radar": frame.radar, "source_line": lines})
+    frame.attrs["provenance"] = "\n".join(provenance)
+    return frame
+
+
+def load_radar_track(site: str, round_number: int) -> pd.DataFrame | None:
+    """The radar track of ``round_number`` from ``site`` in SI (``time_s``, ``altitude_m``,
+    ``range_m``, ``radar``, ``source_line``; the file's comments in ``attrs["provenance"]``),
+    or None if ``data/harp/radar`` has no file for it. HarpDataError names the file, line and
+    column of a malformed row."""
+    path = _radar_path(site, int(finite_scalar(round_number, "round_number")))
+    return _read_radar(path) if path.is_file() else None
+
+
+# --- figure --------------------------------------------------------------------------------------
+def draw_round_figure(site: str, round_number: int):
+    """Figs 6.7-6.11: altitude against time and against radar range, the ECI MKS curve and the
+    radar points if ``data/harp/radar`` has them, else a note saying they are missing."""
+    launch_site, number, _ = _round_row(site, round_number)
+    trajectory = round_trajectory(site, number)
+    radar = load_radar_track(site, number)
+    fig, (by_time, by_range) = new_figure(1, 2, figsize=(10.0, 4.4))
+    altitude_km = trajectory.altitude_m / _KM
+    by_time.plot(trajectory.time_s, altitude_km, label="ECI Modified Kepler")
+    by_range.plot(trajectory.radar_range_m / _KM, altitude_km, label="ECI Modified Kepler")
+    if radar is None:
+        fig.subplots_adjust(bottom=0.28)
+        fig.text(0.5, 0.03, f"radar data for round {number} are not in the dissertation\n"
+                 "(see data/harp/radar/README.md)", ha="center", va="bottom", color="darkred",
+                 fontsize=11, bbox=dict(facecolor="white", edgecolor="darkred"))
+    else:
+        for name, points in radar.groupby("radar"):
+            by_time.plot(points.time_s, points.altitude_m / _KM, "o", ms=3, label=f"{name} radar")
+            by_range.plot(points.range_m / _KM, points.altitude_m / _KM, "o", ms=3,
+                          label=f"{name} radar")
+    by_time.set(xlabel="time (s)", ylabel="altitude (km)")
+    by_range.set(xlabel="range from the gun (km)", ylabel="altitude (km)")
+    for axes in (by_time, by_range):
+        axes.legend(loc="lower center")
+    fig.suptitle(f"{launch_site.name} round {number}: radar data and ECI Modified Kepler "
+                 "solution")
+    return fig
