@@ -226,7 +226,9 @@ class ModifiedKeplerSolution:
         """Time of flight (s) from launch to each ``theta_rad`` (sorted, starting anywhere >= 0),
         eq 3.32: t = integral of dtheta / (u^2 h), by ``order``-point Gauss-Legendre on every
         interval between consecutive angles (and from 0 to the first). On a grid of a few
-        hundred angles three points per interval are converged to nanoseconds (tests)."""
+        hundred angles three points per interval are converged to nanoseconds (tests); ask for
+        the time at a single far angle and one three-point interval spans the whole flight:
+        pass the grid and read its last value instead."""
         theta = self._theta(theta_rad)
         theta = np.broadcast_to(theta, (self.h0.shape[0], theta.shape[1]))
         edges = np.concatenate([np.zeros((theta.shape[0], 1)), theta], axis=1)
