@@ -139,7 +139,12 @@ def test_initial_natural_frequency_does_not_depend_on_k():
                                                               decay_constant_per_m=k))
               for k in (0.117e-3, 0.14e-3)]
     assert values[0] == pytest.approx(values[1], rel=1e-12)
-    assert values[0] == pytest.approx(17.087, abs=1e-3)
+    # By hand from eqs 3.22, 3.27 and 3.29: Cd0 = -CX0 at launch, rho0 = 1.225, tan(50 deg).
+    from harp_analysis.atmosphere import get_atmosphere
+    phi = np.radians(50.0)
+    cd0 = HP.drag_law(2022.0 / get_atmosphere("two_segment").speed_of_sound(0.0))
+    tau_beta = earth.RADIUS_M * cd0 * 1.225 * HP.reference_area_m2 / (2 * HP.mass_kg * np.cos(phi))
+    assert values[0] == pytest.approx(np.sqrt(1 + tau_beta * np.tan(phi)), rel=1e-9)
 
 
 def test_frequency_response_limits():
