@@ -54,7 +54,8 @@ __all__ = ["LaunchCorrection", "surface_velocity", "relative_velocity", "misalig
            "speed_ratio_squared", "speed_ratio_squared_eq_5_3", "tangent_speed",
            "tangent_direction", "elevation_azimuth", "initial_angular_momentum",
            "asymptotic_angular_momentum", "launch_correction", "eci_solution",
-           "fit_speed_of_sound_m_s", "fit_drag_area_m2", "appendix_columns", "site_surface_speed_km_s"]
+           "fit_speed_of_sound_m_s", "fit_drag_area_m2", "appendix_columns", "site_surface_speed_km_s",
+           "inertial_positions"]
 
 _Z_AXIS = np.array([0.0, 0.0, 1.0])
 
@@ -312,3 +313,17 @@ def appendix_columns(site: str, *, drag_area_m2: float | None = None,
 def site_surface_speed_km_s(site: str) -> float:
     """Speed of the Earth's surface at ``site`` (km/s), eq 6.16's 0.4518 km/s at Barbados."""
     return float(_norm(surface_velocity(get_site(site).latitude_rad))) / 1e3
+
+
+def inertial_positions(solution: mks.ModifiedKeplerSolution, launch: LaunchCorrection,
+                       latitude_rad: float, theta_rad) -> np.ndarray:
+    """Positions (n, 3) of a single-launch ECI MKS at angular ranges ``theta_rad``: r(theta)
+    in the plane of the launch point's radius and the corrected velocity's horizontal part,
+    in the inertial frame of :func:`threedof.launch_frame` at longitude 0 and time zero."""
+    up = np.ravel(launch_frame(latitude_rad, 0.0, 0.0)[0])
+    velocity = np.ravel(launch.velocity_m_s)
+    along = velocity - (velocity @ up) * up
+    along /= np.linalg.norm(along)
+    theta = np.asarray(theta_rad, dtype=float)
+    radius = np.ravel(solution.radius(theta))
+    return radius[:, None] * (np.cos(theta)[:, None] * up + np.sin(theta)[:, None] * along)

@@ -89,13 +89,12 @@ def round_trajectory(site: str, round_number: int, n_points: int = 400, *,
     launch = (row.muzzle_speed_m_s, launch_site.elevation_rad, launch_site.gun_bearing_rad,
               launch_site.latitude_rad)
     solution = eci.eci_solution(*launch, decay=decay, warn=False, **kwargs)
-    azimuth = float(eci.launch_correction(*launch, **kwargs).azimuth_rad)
+    correction = eci.launch_correction(*launch, **kwargs)
     theta = np.linspace(0.0, solution.impact_angle, n_points)
     sample = solution.sample(theta)
-    up, along_azimuth, _ = launch_frame(launch_site.latitude_rad, 0.0, azimuth)
-    _, along_gun, _ = launch_frame(launch_site.latitude_rad, 0.0, launch_site.gun_bearing_rad)
+    up, along_gun, _ = launch_frame(launch_site.latitude_rad, 0.0, launch_site.gun_bearing_rad)
     radius = sample["altitude_m"] + earth.RADIUS_M
-    inertial = radius[:, None] * (np.cos(theta)[:, None] * up + np.sin(theta)[:, None] * along_azimuth)
+    inertial = eci.inertial_positions(solution, correction, launch_site.latitude_rad, theta)
     turn = -earth.ROTATION_RATE_RAD_S * sample["time_s"]
     cos, sin = np.cos(turn), np.sin(turn)
     fixed = np.column_stack([cos * inertial[:, 0] - sin * inertial[:, 1],

@@ -21,7 +21,7 @@ import pandas as pd
 from . import earth, eci
 from .atmosphere import get_atmosphere
 from .projectiles import BASELINE
-from .threedof import launch_frame, simulate_3dof
+from .threedof import simulate_3dof
 
 __all__ = ["LATITUDES_DEG", "BEARINGS_DEG", "ELEVATIONS_DEG", "case", "error_at_apogee_km",
            "worst_error_at_apogee_km", "share_under_1km", "west_over_east"]
@@ -45,15 +45,11 @@ def case(latitude_deg: float, bearing_deg: float, elevation_deg: float,
                    surface_density_kg_m3=1.225, include_tangent=include_tangent)
     launch = eci.launch_correction(*arguments, **options)
     solution = eci.eci_solution(*arguments, **options, decay=decay, warn=False)
-    up = np.ravel(launch_frame(math.radians(latitude_deg), 0.0, 0.0)[0])
-    velocity = np.ravel(launch.velocity_m_s)
-    along = velocity - (velocity @ up) * up
-    along /= np.linalg.norm(along)
     grid = np.linspace(0.0, solution.impact_angle, 4001)
     times = solution.time(grid)
     flight = flight[flight.time_s <= times[-1]]  # compare while both are in flight
     theta = np.interp(flight.time_s, times, grid)
-    mks_xyz = solution.radius(theta) * (np.cos(theta)[:, None] * up + np.sin(theta)[:, None] * along).T
+    mks_xyz = eci.inertial_positions(solution, launch, math.radians(latitude_deg), theta).T
     sim_xyz = flight[["x_m", "y_m", "z_m"]].to_numpy().T
     errors = pd.DataFrame({"time_s": flight.time_s, "ground_range_m": flight.ground_range_m,
                            "error_m": np.linalg.norm(sim_xyz - mks_xyz, axis=0)})
