@@ -178,8 +178,8 @@ def _threedof_functions():
 
 
 def _sixdof_functions():
-    from .sixdof import _Model
-    return (_Model.no_roll, _Model.aero_no_roll, _Model.air, _Model.coefficients,
+    from .sixdof import RigidBodyModel as M
+    return (M.no_roll, M.aero_no_roll, M.air, M.coefficients,
             atmosphere._two_segment_density, atmosphere._two_segment_speed_of_sound)
 
 

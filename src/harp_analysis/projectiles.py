@@ -24,7 +24,7 @@ from .drag import BASELINE_CONE, M829, AeroTables
 from .validation import check_choice, check_range, finite_scalar
 
 __all__ = ["Projectile", "HP", "HP_TEXT", "LP", "LP_APPENDIX_B", "BASELINE",
-           "get_projectile", "PROJECTILE_NAMES"]
+           "get_projectile", "check_rigid_body", "PROJECTILE_NAMES"]
 
 _SCALE_LP_TO_HP = (15.66 / 5.029) * (0.0395 / 0.0256) ** 2  # Appendix B's inertia scaling
 
@@ -81,3 +81,17 @@ PROJECTILE_NAMES = tuple(_PROJECTILES)
 def get_projectile(name: str) -> Projectile:
     """The projectile called ``name`` (one of :data:`PROJECTILE_NAMES`)."""
     return _PROJECTILES[check_choice(name, "projectile", _PROJECTILES)]
+
+
+def check_rigid_body(projectile, needed_by: str) -> Projectile:
+    """``projectile`` if it carries what a rigid-body method (6DOF, MLT) needs: aerodynamic
+    tables, a diameter and roll and pitch inertias; otherwise a named error."""
+    if not isinstance(projectile, Projectile):
+        raise TypeError(f"projectile must be a Projectile; got {type(projectile).__name__}")
+    missing = [name for name in ("aero", "diameter_m", "roll_inertia_kg_m2",
+                                 "pitch_inertia_kg_m2") if getattr(projectile, name) is None]
+    if missing:
+        raise ValueError(f"projectile {projectile.name!r} has no {', '.join(missing)}: "
+                         f"{needed_by} needs aerodynamic tables, a diameter and roll and pitch "
+                         "inertias")
+    return projectile

@@ -91,12 +91,13 @@ from scipy.integrate import solve_ivp
 
 from . import earth
 from .atmosphere import AtmosphereModel, get_atmosphere
-from .projectiles import Projectile
+from .projectiles import Projectile, check_rigid_body
 from .trajectory import BASE_COLUMNS, flight_path_angle, surface_ranges
 from .validation import check_choice, check_range, finite_array, finite_scalar
 
-__all__ = ["STATE_NAMES", "DENSITY_ALTITUDES", "EXTRA_COLUMNS", "appendix_b_derivatives",
-           "no_roll_derivatives", "simulate_6dof", "integrate_fixed_step"]
+__all__ = ["STATE_NAMES", "DENSITY_ALTITUDES", "EXTRA_COLUMNS", "RigidBodyModel",
+           "rigid_body_model", "appendix_b_derivatives", "no_roll_derivatives",
+           "trajectory_table", "simulate_6dof", "integrate_fixed_step"]
 
 STATE_NAMES = ("x", "y", "z", "phi", "theta", "psi", "u", "v", "w", "p", "q", "r")
 DENSITY_ALTITUDES = ("flat", "spherical")
@@ -113,7 +114,7 @@ _ATOL = np.array([1e-6] * 3 + [1e-10] * 3 + [1e-7] * 3 + [1e-8, 1e-10, 1e-10])
 _SINGULAR_COS = 1e-6
 
 
-class _Model:
+class RigidBodyModel:
     """Constants of one projectile in one atmosphere and wind; the two derivative functions."""
 
     def __init__(self, projectile: Projectile, atmosphere: AtmosphereModel, wind_m_s: tuple,
@@ -247,29 +248,19 @@ def _atmosphere_model(atmosphere) -> AtmosphereModel:
     return atmosphere if isinstance(atmosphere, AtmosphereModel) else get_atmosphere(atmosphere)
 
 
-def _check_projectile(projectile) -> Projectile:
-    if not isinstance(projectile, Projectile):
-        raise TypeError(f"projectile must be a Projectile; got {type(projectile).__name__}")
-    missing = [name for name in ("aero", "diameter_m", "roll_inertia_kg_m2",
-                                 "pitch_inertia_kg_m2") if getattr(projectile, name) is None]
-    if missing:
-        raise ValueError(f"projectile {projectile.name!r} has no {', '.join(missing)}: the 6DOF "
-                         "needs aerodynamic tables, a diameter and roll and pitch inertias")
-    return projectile
-
-
 # Cached: the verification RK4 calls the public derivatives thousands of times per run.
 @lru_cache(maxsize=16)
-def _model(projectile, atmosphere, wind_m_s, density_altitude) -> _Model:
-    return _Model(projectile, atmosphere, wind_m_s, density_altitude)
+def _model(projectile, atmosphere, wind_m_s, density_altitude) -> RigidBodyModel:
+    return RigidBodyModel(projectile, atmosphere, wind_m_s, density_altitude)
 
 
-def _checked_model(projectile, atmosphere, wind_m_s, density_altitude) -> _Model:
+def rigid_body_model(projectile, atmosphere, wind_m_s, density_altitude) -> RigidBodyModel:
+    """The checked, cached :class:`RigidBodyModel` of ``projectile`` (shared with the MLT)."""
     wind = finite_array(wind_m_s, "wind_m_s")
     if wind.shape != (3,):
         raise ValueError(f"wind_m_s must be 3 flat-frame components; got shape {wind.shape}")
     check_choice(density_altitude, "density_altitude", DENSITY_ALTITUDES)
-    return _model(_check_projectile(projectile), _atmosphere_model(atmosphere),
+    return _model(check_rigid_body(projectile, "the 6DOF"), _atmosphere_model(atmosphere),
                   tuple(map(float, wind)), density_altitude)
 
 
@@ -302,7 +293,7 @@ def appendix_b_derivatives(state, projectile: Projectile, *, atmosphere="two_seg
     ``atmosphere`` is a name of :data:`harp_analysis.atmosphere.ATMOSPHERE_NAMES` or an
     :class:`~harp_analysis.atmosphere.AtmosphereModel`.
     """
-    model = _checked_model(projectile, atmosphere, wind_m_s, density_altitude)
+    model = rigid_body_model(projectile, atmosphere, wind_m_s, density_altitude)
     return model.body(_checked_state(state))
 
 
@@ -316,7 +307,7 @@ def no_roll_derivatives(state, projectile: Projectile, *, atmosphere="two_segmen
     no-roll frame (the body's v, w and q, r rotated back by phi); phi is carried for output
     only. The arguments are those of :func:`appendix_b_derivatives`.
     """
-    model = _checked_model(projectile, atmosphere, wind_m_s, density_altitude)
+    model = rigid_body_model(projectile, atmosphere, wind_m_s, density_altitude)
     return np.array(model.no_roll(0.0, _checked_state(state)))
 
 
@@ -364,8 +355,10 @@ def _earth_centred(states: np.ndarray) -> np.ndarray:
     return np.column_stack([states[0], states[1], states[2] - _R])
 
 
-def _table(model: _Model, times: np.ndarray, states: np.ndarray) -> pd.DataFrame:
-    """The tidy trajectory table of :mod:`.trajectory` plus :data:`EXTRA_COLUMNS`."""
+def trajectory_table(model: RigidBodyModel, times: np.ndarray, states: np.ndarray
+                     ) -> pd.DataFrame:
+    """The tidy trajectory table of :mod:`.trajectory` plus :data:`EXTRA_COLUMNS` for no-roll
+    states (12, n); Mach, drag and angle of attack evaluated with ``model``'s aerodynamics."""
     position = _earth_centred(states)
     velocity = _flat_velocity(states)
     radius = np.linalg.norm(position, axis=1)
@@ -416,7 +409,7 @@ def simulate_6dof(projectile: Projectile, *, elevation_deg: float = 50.0,
     time of flight, range and cross range at the last row, and the integration statistics
     ``n_rhs`` and ``n_steps``.
     """
-    projectile = _check_projectile(projectile)
+    projectile = check_rigid_body(projectile, "the 6DOF")
     elevation = check_range(finite_scalar(elevation_deg, "elevation_deg"), "elevation_deg",
                             low=0.0, low_inclusive=False, high=90.0, unit="deg")
     if math.cos(math.radians(elevation)) <= _SINGULAR_COS:
@@ -431,7 +424,7 @@ def simulate_6dof(projectile: Projectile, *, elevation_deg: float = 50.0,
                            low_inclusive=False, unit="s")
     step = check_range(finite_scalar(output_step_s, "output_step_s"), "output_step_s",
                        low=0.0, low_inclusive=False, unit="s")
-    model = _checked_model(projectile, atmosphere, (0.0, crosswind, 0.0), density_altitude)
+    model = rigid_body_model(projectile, atmosphere, (0.0, crosswind, 0.0), density_altitude)
 
     def impact(t, y):
         return math.sqrt(y[0] ** 2 + y[1] ** 2 + (_R - y[2]) ** 2) - _R
@@ -466,10 +459,10 @@ def simulate_6dof(projectile: Projectile, *, elevation_deg: float = 50.0,
 
     end = float(solution.t[-1])
     times = np.append(np.arange(0.0, end, step), end)
-    frame = _table(model, times, solution.sol(times))
+    frame = trajectory_table(model, times, solution.sol(times))
     apogee_times = solution.t_events[1]
     if apogee_times.size:
-        top = _table(model, apogee_times[:1], solution.y_events[1][:1].T).iloc[0]
+        top = trajectory_table(model, apogee_times[:1], solution.y_events[1][:1].T).iloc[0]
         apogee_time, apogee_altitude, apogee_range = (
             float(apogee_times[0]), float(top.altitude_m), float(top.ground_range_m))
     else:

@@ -1,0 +1,497 @@
+"""Modified Linear Theory (MLT): a reconstruction of Hainz and Costello (J. Guid. Control Dyn.
+28(5), 2005), the third reference method of Chapters 2 and 4.
+
+**This is a reconstruction.** The paper's equations are not public and the dissertation only
+describes MLT (Chapter 1, Chapter 2 A): projectile linear theory (symmetric projectile, small
+aerodynamic angles of attack, Magnus force ignored, Magnus moment kept) with the small-pitch
+assumption relaxed: the pitch angle is held constant where it multiplies other states and
+integrated with the trapezoid rule inside trigonometric functions, and the linear solution is
+restarted every 500 m to 2 km so that density, Mach and the coefficients follow the flight.
+What follows derives such a theory from the 6DOF's own equations (:mod:`.sixdof`, the no-roll
+frame N of Appendix B's projectile) and the standard linear theory of the public literature
+(McCoy, *Modern Exterior Ballistics*, ch. 9-10; Costello's projectile linear theory).
+
+Equations, one by one
+---------------------
+States are the 6DOF's ``[x y z phi theta psi u v w p q r]``: flat-frame position (z down), the
+Euler angles of N, velocity and angular velocity in N. The independent variable is the
+dimensionless arc length s, ds = V dt / D (calibres), ``( )' = d/ds = (D/V) d/dt``. Let
+k = pi rho D^3 / 8 and (v_w, w_w) the wind resolved in N.
+
+(L1) Linear-theory assumptions on the 6DOF's translation and rotation equations: the lateral
+     states v, w, q, r are small, so their products (the frame-rate terms q w - r v,
+     r tan(theta) w, r tan(theta) v, tan(theta) r^2, tan(theta) q r, and the yaw-drag term
+     CX2 (v^2 + w^2)/V^2) are dropped and u = V where u multiplies q or r.
+(L2) Axial velocity, drag with one factor V frozen: ``u' = -a (u - u_w) + D g_u / V``,
+     a = -k CX0 / m. With V and the gravity component g_u frozen over a segment this is
+     linear with constant coefficients: u(s) = u0 e^{-a s} + (a u_w + D g_u/V) s phi1(-a s),
+     the total velocity's closed-form decay (phi_k are the functions below).
+(L3) Epicyclic states in complex form, v~ = v + i w, q~ = q + i r:
+         v~' = -A v~ + i D q~ + (A v~_w + D (g_v + i g_w) / V),      A = k CNA / m,
+         q~' = -i B v~ + (C + i E) q~ + i B v~_w,
+     B = k CNA SLDEL / Iy (the static moment, SLDEL the centre-of-pressure arm),
+     C = k D^2 CMQ / (2 Iy) (pitch damping), E = (Ix / Iy) p D / V (gyroscopic coupling).
+     The 6DOF's v' = F_y/m + g_v - r u, w' = F_z/m + g_w + q u, q' = (M_y - Ix p r)/Iy,
+     r' = (M_z + Ix p q)/Iy give exactly these after (L1).
+(L4) Roll: ``p' = kappa p + P_d``, kappa = k D^2 CLP / (2 Ix), P_d = k D V CLDD / Ix: closed form.
+(L5) Over a segment, X = [v~, q~] obeys X' = M X + F with a constant 2x2 complex matrix M and
+     forcing F. Its eigenvalues lambda = m +- delta, m = (C - A + i E)/2,
+     delta^2 = ((A + C + i E)/2)^2 + D B, are the fast and slow epicyclic modes (their
+     imaginary parts the mode frequencies per calibre, real parts the damping rates). By
+     Cayley-Hamilton every function of M is f(M) = (f(l1) + f(l2))/2 I + f[l1, l2] (M - m I),
+     with the divided difference f[l1, l2] = (f(l1) - f(l2)) / (2 delta) (or f'(m) when the
+     modes coincide), so
+         X(s) = f0(M) X0 + f1(M) F,          integral_0^s X = f1(M) X0 + f2(M) F,
+     f0(l) = e^{l s}, f_k(l) = s^k phi_k(l s), phi_k(z) = sum_n z^n / (n + k)!. No ODE solver:
+     a segment is a handful of exponentials.
+(L6) Attitude, the pitch angle kept constant where it multiplies: theta(s) = theta0 +
+     (D/V) Re integral q~, psi(s) = psi0 + (D/V) sec(theta) Im integral q~,
+     phi(s) = phi0 + (D/V) integral p (r tan(theta) dropped, L1).
+(L7) Position and gravity, the pitch angle trapezoid-integrated inside the trigonometric
+     functions: the rotation T(theta, psi) from the flat frame to N is replaced over a segment
+     by the trapezoid mean T = (T(theta0, psi0) + T(theta1, psi1)) / 2, and
+     [x y z](s) = [x y z]0 + (D/V) T^T integral_0^s [u v w] ds;
+     the gravity and wind components in (L2)-(L3) are T g and T wind.
+(L8) The end angles theta1, psi1 come from a first pass of the segment with T at its start;
+     the second pass uses the trapezoid T. Coefficients (density, Mach, CX0 ... CLDD, V, p,
+     and the gravity vector) are frozen at ``coefficients_at``: the segment's ``"start"``,
+     its ``"middle"`` (from the first pass) or the ``"average"`` of start and end.
+
+Time: with V frozen, dt = D ds / V, so a segment of ``segment_length_m`` L lasts L / V. The
+Earth, gravity (central, GM/r^2, frozen per segment; ``gravity="uniform"`` keeps GM/R^2 along
+the launch vertical for a flat-Earth check), atmosphere (flat or spherical altitude), wind and
+M829 tables are the 6DOF's (:class:`harp_analysis.sixdof.RigidBodyModel`), so differences
+between the two come from linear theory alone.
+
+Consequences, each checked in ``tests/test_mlt.py``:
+
+- without aerodynamics, (L2)-(L7) are exact for constant gravity: u, v, w grow linearly in t,
+  the attitude stays fixed, the position is the exact parabola at any segment length;
+- as segments shrink MLT converges to its continuous limit (:func:`linear_theory_derivatives`
+  integrated tightly, a diagnostic, not part of MLT), and the difference between that limit
+  and the 6DOF is what the dropped products (L1) cost;
+- the eigenvalues of (L5) are McCoy's epicyclic roots for the same coefficients.
+
+Where linear theory is pushed past its assumptions: above the sensible atmosphere nothing
+turns the body into the curving velocity, so v, w grow (the angle of attack reaches 12 deg for
+HP); (L1) then drops products that are no longer small. A flight whose angle of attack grows
+beyond :data:`MAX_SMALL_ANGLE_DEG` while the dynamic pressure is above
+:data:`DENSE_AIR_PA` (where aerodynamic loads act on it) gets a ``ModelValidityWarning``.
+"""
+
+from __future__ import annotations
+
+import cmath
+import math
+import warnings
+from typing import NamedTuple
+
+import numpy as np
+import pandas as pd
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+from . import earth
+from .atmosphere import AtmosphereModel, get_atmosphere
+from .projectiles import Projectile, check_rigid_body
+from .sixdof import DENSITY_ALTITUDES, RigidBodyModel, rigid_body_model, trajectory_table
+from .validation import ModelValidityWarning, check_choice, check_range, finite_scalar
+
+__all__ = ["SEGMENT_LENGTH_M", "COEFFICIENT_POINTS", "GRAVITY_MODELS", "MAX_SMALL_ANGLE_DEG",
+           "DENSE_AIR_PA", "SegmentCoefficients", "segment_coefficients", "epicyclic_roots",
+           "propagate_segment", "simulate_mlt", "linear_theory_derivatives",
+           "simulate_linear_theory_limit"]
+
+SEGMENT_LENGTH_M = 1000.0
+COEFFICIENT_POINTS = ("start", "middle", "average")
+GRAVITY_MODELS = ("central", "uniform")
+MAX_SMALL_ANGLE_DEG = 10.0
+DENSE_AIR_PA = 1000.0
+
+_R = earth.RADIUS_M
+_GM = earth.GM_M3_S2
+# phi_3(z) = sum_n z^n / (n + 3)! to n = 17: below 1e-19 of the sum for |z| <= 1.
+_PHI3_SERIES = tuple(1.0 / math.factorial(n + 3) for n in range(18))[::-1]
+# Below this |l1 - l2| s the two modes are one (confluent) within rounding: f'(m) is used.
+_CONFLUENT = 1e-6
+
+
+class SegmentCoefficients(NamedTuple):
+    """The constants of one segment's linear system (eqs L2-L5; per calibre of arc length)."""
+
+    speed: float          # V (m/s), air-relative
+    axial_drag: float     # a = -k CX0 / m
+    lift: float           # A = k CNA / m
+    static_moment: float  # B = k CNA SLDEL / Iy (1/(m s) ... per calibre)
+    damping: float        # C = k D^2 CMQ / (2 Iy)
+    gyroscopic: float     # E = (Ix / Iy) p D / V
+    roll_damping: float   # kappa = k D^2 CLP / (2 Ix)
+    roll_drive: float     # P_d = k D V CLDD / Ix
+    gravity: tuple        # flat-frame gravity vector (m/s^2)
+    dynamic_pressure: float  # rho V^2 / 2 (Pa), for the validity check
+
+
+def _rotation(theta: float, psi: float) -> tuple:
+    """Rows of T(theta, psi), flat frame to N (Appendix B's TIB with phi = 0)."""
+    ct, st, cp, sp = math.cos(theta), math.sin(theta), math.cos(psi), math.sin(psi)
+    return ((ct * cp, ct * sp, -st), (-sp, cp, 0.0), (st * cp, st * sp, ct))
+
+
+def _apply(rows: tuple, vector) -> tuple:
+    return tuple(row[0] * vector[0] + row[1] * vector[1] + row[2] * vector[2] for row in rows)
+
+
+def _apply_transpose(rows: tuple, vector) -> tuple:
+    return tuple(rows[0][j] * vector[0] + rows[1][j] * vector[1] + rows[2][j] * vector[2]
+                 for j in range(3))
+
+
+def _gravity(x: float, y: float, z: float, uniform: bool) -> tuple:
+    if uniform:
+        return (0.0, 0.0, _GM / _R ** 2)
+    radius = math.sqrt(x * x + y * y + (_R - z) ** 2)
+    g = _GM / radius ** 3
+    return (-g * x, -g * y, g * (_R - z))
+
+
+def segment_coefficients(model: RigidBodyModel, state, *, aerodynamics: bool = True,
+                         uniform_gravity: bool = False) -> SegmentCoefficients:
+    """The coefficients of eqs L2-L5 at ``state`` (12 no-roll states, see module docstring)."""
+    x, y, z, _, theta, psi, u, v, w, p, _, _ = state
+    rows = _rotation(theta, psi)
+    u_w, v_w, w_w = _apply(rows, model.wind)
+    speed = math.sqrt((u - u_w) ** 2 + (v - v_w) ** 2 + (w - w_w) ** 2)
+    gravity = _gravity(x, y, z, uniform_gravity)
+    gyroscopic = model.ix * p * model.d / (model.iy * speed)
+    if not aerodynamics:
+        return SegmentCoefficients(speed, 0.0, 0.0, 0.0, 0.0, gyroscopic, 0.0, 0.0, gravity, 0.0)
+    rho, sound = model.air(x, y, z)
+    cx0, _, cna, _, cmq, clp, cldd, arm, _ = model.coefficients(speed / sound)
+    d = model.d
+    k = math.pi * rho * d ** 3 / 8.0
+    return SegmentCoefficients(
+        speed, -k * cx0 / model.mass, k * cna / model.mass, k * cna * arm / model.iy,
+        k * d * d * cmq / (2.0 * model.iy), gyroscopic, k * d * d * clp / (2.0 * model.ix),
+        k * d * speed * cldd / model.ix, gravity, 0.5 * rho * speed * speed)
+
+
+def _average(a: SegmentCoefficients, b: SegmentCoefficients) -> SegmentCoefficients:
+    return SegmentCoefficients(*(tuple((i + j) / 2 for i, j in zip(x, y)) if isinstance(x, tuple)
+                                 else (x + y) / 2 for x, y in zip(a, b)))
+
+
+def epicyclic_roots(c: SegmentCoefficients, diameter_m: float) -> tuple[complex, complex]:
+    """The eigenvalues m +- delta of eq L5's matrix, fast mode (larger |imaginary part|) first:
+    imaginary parts are the mode frequencies (rad per calibre), real parts the damping rates."""
+    mean = 0.5 * complex(c.damping - c.lift, c.gyroscopic)
+    delta = cmath.sqrt(0.25 * complex(c.lift + c.damping, c.gyroscopic) ** 2
+                       + diameter_m * c.static_moment)
+    first, second = mean + delta, mean - delta
+    return (first, second) if abs(first.imag) >= abs(second.imag) else (second, first)
+
+
+def _phi(z: complex) -> tuple:
+    """e^z, phi1, phi2, phi3 (phi_k(z) = sum z^n/(n+k)!), accurate for every z."""
+    if abs(z) > 1.0:
+        e = cmath.exp(z)
+        phi1 = (e - 1.0) / z
+        phi2 = (phi1 - 1.0) / z
+        return e, phi1, phi2, (phi2 - 0.5) / z
+    phi3 = 0.0
+    for coefficient in _PHI3_SERIES:
+        phi3 = phi3 * z + coefficient
+    phi2 = 0.5 + z * phi3
+    phi1 = 1.0 + z * phi2
+    return 1.0 + z * phi1, phi1, phi2, phi3
+
+
+def _scalar_solution(rate: float, forcing: float, x0: float, s: float) -> tuple[float, float]:
+    """x(s) and integral_0^s x of x' = rate x + forcing (closed form)."""
+    e, phi1, phi2, _ = _phi(complex(rate * s))
+    f1, f2 = s * phi1.real, s * s * phi2.real
+    return e.real * x0 + f1 * forcing, f1 * x0 + f2 * forcing
+
+
+def _epicyclic_solution(c: SegmentCoefficients, d: float, v0: complex, q0: complex,
+                        force_v: complex, force_q: complex, s: float) -> tuple:
+    """X(s) and integral_0^s X of eq L5 (Cayley-Hamilton, module docstring)."""
+    a11, a12, a21, a22 = -c.lift, 1j * d, -1j * c.static_moment, complex(c.damping,
+                                                                         c.gyroscopic)
+    mean = 0.5 * (a11 + a22)
+    delta = cmath.sqrt(0.25 * (a11 - a22) ** 2 + a12 * a21)
+    e1, p11, p21, _ = _phi((mean + delta) * s)
+    e2, p12, p22, _ = _phi((mean - delta) * s)
+    # f0, f1, f2 at both roots; their means and divided differences.
+    if abs(2.0 * delta * s) > _CONFLUENT:
+        f = ((e1 + e2) / 2, s * (p11 + p12) / 2, s * s * (p21 + p22) / 2)
+        df = ((e1 - e2) / (2 * delta), s * (p11 - p12) / (2 * delta),
+              s * s * (p21 - p22) / (2 * delta))
+    else:
+        e, phi1, phi2, phi3 = _phi(mean * s)
+        f = (e, s * phi1, s * s * phi2)
+        df = (s * e, s * s * (phi1 - phi2), s ** 3 * (phi2 - 2.0 * phi3))
+
+    def apply(k, v, q):  # f_k(M) [v, q]
+        return (f[k] * v + df[k] * ((a11 - mean) * v + a12 * q),
+                f[k] * q + df[k] * (a21 * v + (a22 - mean) * q))
+
+    (v_a, q_a), (v_b, q_b) = apply(0, v0, q0), apply(1, force_v, force_q)
+    (iv_a, iq_a), (iv_b, iq_b) = apply(1, v0, q0), apply(2, force_v, force_q)
+    return v_a + v_b, q_a + q_b, iv_a + iv_b, iq_a + iq_b
+
+
+def propagate_segment(model: RigidBodyModel, state, c: SegmentCoefficients, rows: tuple,
+                      secant: float, s: float) -> tuple:
+    """The 12 states at arc length ``s`` (calibres) into a segment starting at ``state``, with
+    coefficients ``c``, the flat-to-N rotation ``rows`` used for gravity, wind and position
+    (eq L7) and sec(theta) ``secant`` (eq L6). Closed form throughout (eqs L2-L7)."""
+    x, y, z, phi, theta, psi, u, v, w, p, q, r = state
+    d, speed = model.d, c.speed
+    g_u, g_v, g_w = _apply(rows, c.gravity)
+    u_w, v_w, w_w = _apply(rows, model.wind)
+    u1, u_int = _scalar_solution(-c.axial_drag, c.axial_drag * u_w + d * g_u / speed, u, s)
+    p1, p_int = _scalar_solution(c.roll_damping, c.roll_drive, p, s)
+    wind = complex(v_w, w_w)
+    lateral, rate, lateral_int, rate_int = _epicyclic_solution(
+        c, d, complex(v, w), complex(q, r), c.lift * wind + d * complex(g_v, g_w) / speed,
+        1j * c.static_moment * wind, s)
+    scale = d / speed
+    dx, dy, dz = _apply_transpose(rows, (u_int, lateral_int.real, lateral_int.imag))
+    return (x + scale * dx, y + scale * dy, z + scale * dz, phi + scale * p_int,
+            theta + scale * rate_int.real, psi + scale * secant * rate_int.imag,
+            u1, lateral.real, lateral.imag, p1, rate.real, rate.imag)
+
+
+class _Segment(NamedTuple):
+    start: tuple
+    coefficients: SegmentCoefficients
+    rows: tuple
+    secant: float
+    time_s: float
+    length: float  # calibres
+
+    def at(self, model, s):
+        return propagate_segment(model, self.start, self.coefficients, self.rows, self.secant, s)
+
+    def duration_s(self, model) -> float:
+        return self.length * model.d / self.coefficients.speed
+
+
+def _solve_segment(model, state, length, coefficients_at, aerodynamics, uniform) -> _Segment:
+    """Eq L8: a first pass at the start's attitude and coefficients, then the second pass with
+    the trapezoid rotation and the coefficients at ``coefficients_at``."""
+    def coefficients(at):
+        return segment_coefficients(model, at, aerodynamics=aerodynamics,
+                                    uniform_gravity=uniform)
+
+    start = coefficients(state)
+    rows0 = _rotation(state[4], state[5])
+    secant0 = 1.0 / math.cos(state[4])
+    end = propagate_segment(model, state, start, rows0, secant0, length)
+    if coefficients_at == "middle":
+        chosen = coefficients(propagate_segment(model, state, start, rows0, secant0, length / 2))
+    elif coefficients_at == "average":
+        chosen = _average(start, coefficients(end))
+    else:
+        chosen = start
+    rows1 = _rotation(end[4], end[5])
+    rows = tuple(tuple((a + b) / 2 for a, b in zip(r0, r1)) for r0, r1 in zip(rows0, rows1))
+    secant = (secant0 + 1.0 / math.cos(end[4])) / 2
+    return _Segment(state, chosen, rows, secant, 0.0, length)
+
+
+def _altitude(state) -> float:
+    x, y, z = state[:3]
+    return math.sqrt(x * x + y * y + (_R - z) ** 2) - _R
+
+
+def _radial_velocity(segment: _Segment, model, s: float) -> float:
+    state = segment.at(model, s)
+    vx, vy, vz = _apply_transpose(segment.rows, state[6:9])
+    return state[0] * vx + state[1] * vy + (state[2] - _R) * vz
+
+
+def _check_validity(segments, model, name):
+    for segment in segments:
+        c, state = segment.coefficients, segment.start
+        u_w, v_w, w_w = _apply(segment.rows, model.wind)
+        alpha = math.degrees(math.atan2(math.hypot(state[7] - v_w, state[8] - w_w),
+                                        state[6] - u_w))
+        if alpha > MAX_SMALL_ANGLE_DEG and c.dynamic_pressure > DENSE_AIR_PA:
+            warnings.warn(
+                f"MLT flight of {name}: the angle of attack reaches {alpha:.1f} deg at "
+                f"{_altitude(state) / 1e3:.1f} km where the dynamic pressure is "
+                f"{c.dynamic_pressure / 1e3:.1f} kPa; linear theory assumes small angles "
+                "where the air acts, so this trajectory is outside its validity",
+                ModelValidityWarning, stacklevel=3)
+            return
+
+
+def simulate_mlt(projectile: Projectile, *, elevation_deg: float = 50.0,
+                 speed_m_s: float = 2022.0, spin_rad_s: float = 10.0,
+                 crosswind_m_s: float = 5.0, atmosphere="two_segment",
+                 density_altitude: str = "flat", segment_length_m: float = SEGMENT_LENGTH_M,
+                 coefficients_at: str = "middle", gravity: str = "central",
+                 aerodynamics: bool = True, max_time_s: float = 400.0,
+                 output_step_s: float = 0.5) -> pd.DataFrame:
+    """One MLT flight (module docstring, eqs L1-L8) from launch to impact, as the 6DOF's table.
+
+    The launch, wind, atmosphere and ``density_altitude`` arguments are those of
+    :func:`harp_analysis.sixdof.simulate_6dof`. ``segment_length_m`` is the arc length between
+    updates of the linear solution; ``coefficients_at`` where in a segment the coefficients are
+    frozen (:data:`COEFFICIENT_POINTS`); ``gravity`` the central field of the 6DOF (frozen per
+    segment) or ``"uniform"`` (GM/R^2 down the launch vertical); ``aerodynamics=False`` flies
+    in vacuum. Rows every ``output_step_s`` and at impact (spherical altitude back to zero);
+    Mach, drag coefficient, drag/gravity and angle of attack are evaluated from the states by
+    the 6DOF's aerodynamics, so the two tables mean the same thing. ``frame.attrs`` holds what
+    the 6DOF's does plus ``n_segments``.
+    """
+    projectile = check_rigid_body(projectile, "MLT")
+    elevation = check_range(finite_scalar(elevation_deg, "elevation_deg"), "elevation_deg",
+                            low=0.0, low_inclusive=False, high=90.0, high_inclusive=False,
+                            unit="deg")
+    speed = check_range(finite_scalar(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0,
+                        low_inclusive=False, unit="m/s")
+    spin = finite_scalar(spin_rad_s, "spin_rad_s")
+    crosswind = finite_scalar(crosswind_m_s, "crosswind_m_s")
+    length_m = check_range(finite_scalar(segment_length_m, "segment_length_m"),
+                           "segment_length_m", low=0.0, low_inclusive=False, unit="m")
+    check_choice(coefficients_at, "coefficients_at", COEFFICIENT_POINTS)
+    check_choice(gravity, "gravity", GRAVITY_MODELS)
+    check_choice(density_altitude, "density_altitude", DENSITY_ALTITUDES)
+    max_time = check_range(finite_scalar(max_time_s, "max_time_s"), "max_time_s", low=0.0,
+                           low_inclusive=False, unit="s")
+    step = check_range(finite_scalar(output_step_s, "output_step_s"), "output_step_s",
+                       low=0.0, low_inclusive=False, unit="s")
+    air = atmosphere if isinstance(atmosphere, AtmosphereModel) else get_atmosphere(atmosphere)
+    model = rigid_body_model(projectile, air, (0.0, crosswind, 0.0), density_altitude)
+    length = length_m / model.d
+    uniform = gravity == "uniform"
+
+    state = (0.0, 0.0, 0.0, 0.0, math.radians(elevation), 0.0, speed, 0.0, 0.0, spin, 0.0, 0.0)
+    segments, time, impact, apogee = [], 0.0, False, None
+    while time < max_time:
+        segment = _solve_segment(model, state, length, coefficients_at, aerodynamics,
+                                 uniform)._replace(time_s=time)
+        duration = segment.duration_s(model)
+        end = segment.at(model, length)
+        if _altitude(end) < 0.0:
+            if not segments:
+                raise ValueError(f"segment_length_m = {length_m:g} m is longer than the flight: "
+                                 f"{projectile.name} lands inside the first segment")
+            s_hit = brentq(lambda s: _altitude(segment.at(model, s)), 0.0, length, xtol=1e-9)
+            segment = segment._replace(length=s_hit)
+            segments.append(segment)
+            impact = True
+            break
+        if apogee is None and _radial_velocity(segment, model, length) < 0.0:
+            # The trapezoid rotation changes between segments, so the radial velocity can
+            # change sign at a boundary: the apogee is then the segment's start.
+            s_top = (brentq(lambda s: _radial_velocity(segment, model, s), 0.0, length,
+                            xtol=1e-9) if _radial_velocity(segment, model, 0.0) > 0.0 else 0.0)
+            apogee = (time + s_top * model.d / segment.coefficients.speed,
+                      segment.at(model, s_top))
+        if time + duration > max_time:
+            segments.append(segment._replace(length=(max_time - time) * segment.coefficients
+                                             .speed / model.d))
+            break
+        segments.append(segment)
+        state, time = end, time + duration
+    _check_validity(segments, model, projectile.name)
+
+    end_time = segments[-1].time_s + segments[-1].duration_s(model)
+    times = np.append(np.arange(0.0, end_time, step), end_time)
+    starts = np.array([segment.time_s for segment in segments])
+    index = np.clip(np.searchsorted(starts, times, side="right") - 1, 0, len(segments) - 1)
+    states = np.array([segments[i].at(model, (t - segments[i].time_s)
+                                      * segments[i].coefficients.speed / model.d)
+                       for i, t in zip(index, times)]).T
+    frame = trajectory_table(model, times, states)
+    if apogee is not None:
+        top = trajectory_table(model, np.array([apogee[0]]), np.array(apogee[1])[:, None])
+        apogee_values = (apogee[0], float(top.altitude_m.iloc[0]),
+                         float(top.ground_range_m.iloc[0]))
+    else:
+        apogee_values = (math.nan,) * 3
+    last = frame.iloc[-1]
+    frame.attrs.update(
+        projectile=projectile.name, elevation_deg=elevation, speed_m_s=speed, spin_rad_s=spin,
+        crosswind_m_s=crosswind, atmosphere=air.name, density_altitude=density_altitude,
+        segment_length_m=length_m, coefficients_at=coefficients_at, gravity=gravity,
+        aerodynamics=aerodynamics, impact=impact, time_of_flight_s=end_time,
+        range_m=float(last.ground_range_m), cross_range_m=float(last.cross_range_m),
+        impact_speed_m_s=float(last.speed_m_s), apogee_time_s=apogee_values[0],
+        apogee_altitude_m=apogee_values[1], apogee_ground_range_m=apogee_values[2],
+        n_segments=len(segments))
+    return frame
+
+
+def linear_theory_derivatives(model: RigidBodyModel, state, *, aerodynamics: bool = True,
+                              uniform_gravity: bool = False, frame_coupling: bool = False
+                              ) -> list:
+    """Time derivative of the 12 states under eqs L1-L4, L6 and L7 with every coefficient,
+    gravity and the attitude at ``state`` itself: MLT's limit as segments shrink to nothing.
+
+    A diagnostic, not part of MLT: integrated tightly (:func:`simulate_linear_theory_limit`) it
+    separates what the segments cost (MLT against this limit) from what the dropped products
+    cost (this limit against the 6DOF, which keeps them). ``frame_coupling=True`` restores the
+    one dropped product that matters for HP: the no-roll frame's roll rate -r tan(theta)
+    coupling w into v' and v into w' (``+ r tan(theta) w`` ... see :mod:`.sixdof`, step 3).
+    """
+    c = segment_coefficients(model, state, aerodynamics=aerodynamics,
+                             uniform_gravity=uniform_gravity)
+    x, y, z, phi, theta, psi, u, v, w, p, q, r = state
+    rows = _rotation(theta, psi)
+    g_u, g_v, g_w = _apply(rows, c.gravity)
+    u_w, v_w, w_w = _apply(rows, model.wind)
+    per_time = c.speed / model.d  # d/dt = (V/D) d/ds
+    d = model.d
+    frame_roll = -r * math.tan(theta) if frame_coupling else 0.0
+    return [
+        *_apply_transpose(rows, (u, v, w)),
+        p,
+        q,
+        r / math.cos(theta),
+        per_time * (-c.axial_drag * (u - u_w)) + g_u,
+        per_time * (-c.lift * (v - v_w) - d * r) + g_v + frame_roll * w,
+        per_time * (-c.lift * (w - w_w) + d * q) + g_w - frame_roll * v,
+        per_time * (c.roll_damping * p + c.roll_drive),
+        per_time * (c.static_moment * (w - w_w) + c.damping * q - c.gyroscopic * r),
+        per_time * (-c.static_moment * (v - v_w) + c.damping * r + c.gyroscopic * q),
+    ]
+
+
+def simulate_linear_theory_limit(projectile: Projectile, *, elevation_deg: float = 50.0,
+                                 speed_m_s: float = 2022.0, spin_rad_s: float = 10.0,
+                                 crosswind_m_s: float = 5.0, atmosphere="two_segment",
+                                 density_altitude: str = "flat", frame_coupling: bool = False,
+                                 rtol: float = 1e-10, output_step_s: float = 0.5
+                                 ) -> pd.DataFrame:
+    """:func:`linear_theory_derivatives` integrated by DOP853 from launch to impact: the limit
+    MLT converges to, for measuring its segment error and the cost of the dropped products."""
+    projectile = check_rigid_body(projectile, "linear theory")
+    air = atmosphere if isinstance(atmosphere, AtmosphereModel) else get_atmosphere(atmosphere)
+    model = rigid_body_model(projectile, air, (0.0, finite_scalar(crosswind_m_s,
+                                                                  "crosswind_m_s"), 0.0),
+                             density_altitude)
+
+    def impact(t, y):
+        return _altitude(y)
+
+    impact.terminal, impact.direction = True, -1
+    y0 = [0.0, 0.0, 0.0, 0.0, math.radians(elevation_deg), 0.0, speed_m_s, 0.0, 0.0,
+          spin_rad_s, 0.0, 0.0]
+    solution = solve_ivp(lambda t, y: linear_theory_derivatives(model, y.tolist(),
+                                                           frame_coupling=frame_coupling),
+                         (0.0, 400.0),
+                         y0, method="DOP853", rtol=rtol, atol=1e-9, dense_output=True,
+                         events=impact)
+    end = float(solution.t[-1])
+    times = np.append(np.arange(0.0, end, output_step_s), end)
+    frame = trajectory_table(model, times, solution.sol(times))
+    last = frame.iloc[-1]
+    frame.attrs.update(projectile=projectile.name, time_of_flight_s=end,
+                       range_m=float(last.ground_range_m),
+                       cross_range_m=float(last.cross_range_m),
+                       apogee_altitude_m=float(frame.altitude_m.max()))
+    return frame
