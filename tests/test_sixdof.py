@@ -319,3 +319,14 @@ def test_bad_derivative_input_is_named():
         sixdof.integrate_fixed_step(lambda t, y: y, [1.0], 0.3, 1.0)
     with pytest.raises(ValueError, match="h_s"):
         sixdof.integrate_fixed_step(lambda t, y: y, [1.0], 0.0, 1.0)
+
+
+def test_reference_6dof_is_converged_under_the_method_differences():
+    # Step refinement for the adaptive solver: a hundred times tighter tolerance moves HP's
+    # reference flight by far less than the 16-50 m between the 3DOF or MLT and the 6DOF.
+    from harp_analysis.mlt_validation import sixdof_convergence
+
+    table = sixdof_convergence("HP", rtols=(1e-11,))
+    assert table.max_position_difference_m.iloc[0] < 0.1
+    assert abs(table.apogee_difference_m.iloc[0]) < 0.1
+    assert abs(table.range_difference_m.iloc[0]) < 0.1

@@ -1,8 +1,8 @@
 """The reference flights of Chapter 2 and the quantities the text states about them.
 
 Chapter 2 A: HP and LP launched at 50 deg and 2022 m/s through the two-segment atmosphere of
-eqs 2.1-2.2 with a 5 m/s cross wind, simulated in 3DOF and 6DOF; Table 4.1 adds the baseline
-cone. Flights are cached, so the notebook and the claims ledger share one run of each.
+eqs 2.1-2.2 with a 5 m/s cross wind, simulated in 3DOF, 6DOF and Modified Linear Theory (MLT);
+Table 4.1 adds the baseline cone. Flights are cached, so the notebook and the claims ledger share one run of each.
 Functions take projectile names (see :data:`harp_analysis.projectiles.PROJECTILE_NAMES`) so the
 ledger can call them with plain arguments.
 """
@@ -17,12 +17,14 @@ import pandas as pd
 from . import earth
 from .atmosphere import get_atmosphere
 from .projectiles import get_projectile
+from .mlt import simulate_mlt
 from .sixdof import simulate_6dof
 from .threedof import simulate_3dof
-from .validation import check_range, finite_scalar
+from .validation import check_choice, check_range, finite_scalar
 
 __all__ = ["REFERENCE_ELEVATION_DEG", "REFERENCE_CROSSWIND_M_S", "reference_3dof",
-           "reference_6dof", "max_position_difference_km", "swerve",
+           "reference_6dof", "reference_mlt", "RIGID_BODY_METHODS", "rigid_body_flight",
+           "max_position_difference_km", "swerve",
            "angle_of_attack_at_apogee_deg",
            "launch_drag_to_gravity", "drag_to_gravity_crossing_altitude_km",
            "max_drag_to_gravity_above", "angular_momentum_loss_share_below",
@@ -109,19 +111,41 @@ def reference_6dof(projectile: str, density_altitude: str = "flat") -> pd.DataFr
                          crosswind_m_s=REFERENCE_CROSSWIND_M_S, density_altitude=density_altitude)
 
 
+@cache
+def reference_mlt(projectile: str, density_altitude: str = "flat",
+                  segment_length_m: float = 1000.0, coefficients_at: str = "middle"
+                  ) -> pd.DataFrame:
+    """The MLT flight of ``projectile`` in Chapter 2 A's conditions (:mod:`.mlt`), with the
+    6DOF's atmosphere altitude convention ``density_altitude``."""
+    return simulate_mlt(get_projectile(projectile), elevation_deg=REFERENCE_ELEVATION_DEG,
+                        crosswind_m_s=REFERENCE_CROSSWIND_M_S, density_altitude=density_altitude,
+                        segment_length_m=segment_length_m, coefficients_at=coefficients_at)
+
+
+RIGID_BODY_METHODS = ("6DOF", "MLT")
+
+
+def rigid_body_flight(method: str, projectile: str, density_altitude: str = "flat"
+                      ) -> pd.DataFrame:
+    """The cached reference flight of a rigid-body ``method`` (:data:`RIGID_BODY_METHODS`)."""
+    check_choice(method, "method", RIGID_BODY_METHODS)
+    return (reference_6dof if method == "6DOF" else reference_mlt)(projectile, density_altitude)
+
+
 def _launch_axes(flight: pd.DataFrame, six_dof: bool) -> np.ndarray:
     """Earth-centred positions (n, 3) on the axes (up, downrange, right) at the launch point.
 
     3DOF launches from latitude 0, longitude 0 eastward: up = x, downrange = y, right = -z.
-    The 6DOF's flat frame has x downrange, y right, z down, the Earth's centre at z = +R.
+    The 6DOF's and MLT's flat frame has x downrange, y right, z down, the Earth's centre at
+    z = +R.
     """
     if six_dof:
         return np.column_stack([earth.RADIUS_M - flight.z_m, flight.x_m, flight.y_m])
     return np.column_stack([flight.x_m, flight.y_m, -flight.z_m])
 
 
-def _common_times(projectile: str, density_altitude: str):
-    six = reference_6dof(projectile, density_altitude)
+def _common_times(projectile: str, density_altitude: str, method: str = "6DOF"):
+    six = rigid_body_flight(method, projectile, density_altitude)
     three = reference_3dof(projectile)
     six = six[six.time_s <= three.time_s.iloc[-1]]
     positions3 = _launch_axes(three, six_dof=False)
@@ -130,15 +154,18 @@ def _common_times(projectile: str, density_altitude: str):
     return six, three, at_six
 
 
-def max_position_difference_km(projectile: str, density_altitude: str = "flat") -> float:
-    """Largest distance (km) between the 3DOF and 6DOF positions at the same time."""
-    six, _, at_six = _common_times(projectile, density_altitude)
+def max_position_difference_km(projectile: str, density_altitude: str = "flat",
+                               method: str = "6DOF") -> float:
+    """Largest distance (km) between the 3DOF's position and a rigid-body ``method``'s at the
+    same time."""
+    six, _, at_six = _common_times(projectile, density_altitude, method)
     return float(np.max(np.linalg.norm(_launch_axes(six, six_dof=True) - at_six, axis=1)) / 1e3)
 
 
-def swerve(projectile: str) -> pd.DataFrame:
-    """Fig 2.7: the 6DOF's cross range minus the 3DOF's at the same time, against range."""
-    six, three, _ = _common_times(projectile, "flat")
+def swerve(projectile: str, method: str = "6DOF") -> pd.DataFrame:
+    """Fig 2.7: a rigid-body ``method``'s cross range minus the 3DOF's at the same time,
+    against range."""
+    six, three, _ = _common_times(projectile, "flat", method)
     cross3 = np.interp(six.time_s, three.time_s, three.cross_range_m)
     return pd.DataFrame({"time_s": six.time_s, "ground_range_m": six.ground_range_m,
                          "swerve_m": six.cross_range_m - cross3})
