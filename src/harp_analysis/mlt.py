@@ -63,6 +63,13 @@ the launch vertical for a flat-Earth check), atmosphere (flat or spherical altit
 M829 tables are the 6DOF's (:class:`harp_analysis.sixdof.RigidBodyModel`), so differences
 between the two come from linear theory alone.
 
+Cost: segments are sequential (each starts where the last ended), so there is nothing to
+vectorise across them, and a segment's internals are 2x2 complex closed forms on which numpy's
+per-call overhead would exceed the arithmetic: they run as Python scalars. One segment (two
+coefficient evaluations, three closed-form propagations, the impact and apogee checks) takes
+about 0.1 ms; a whole HP flight at 1 km about 0.05 s, of which a third is the output table
+(``make benchmark`` measures it against the 3DOF and 6DOF at each segment length).
+
 Consequences, each checked in ``tests/test_mlt.py``:
 
 - without aerodynamics, (L2)-(L7) are exact for constant gravity: u, v, w grow linearly in t,
@@ -75,8 +82,9 @@ Consequences, each checked in ``tests/test_mlt.py``:
 Where linear theory is pushed past its assumptions: above the sensible atmosphere nothing
 turns the body into the curving velocity, so v, w grow (the angle of attack reaches 12 deg for
 HP); (L1) then drops products that are no longer small. A flight whose angle of attack grows
-beyond :data:`MAX_SMALL_ANGLE_DEG` while the dynamic pressure is above
-:data:`DENSE_AIR_PA` (where aerodynamic loads act on it) gets a ``ModelValidityWarning``.
+beyond :data:`MAX_SMALL_ANGLE_DEG`, or whose epicyclic modes grow (a dynamically unstable
+projectile), while the dynamic pressure is above :data:`DENSE_AIR_PA` (where aerodynamic loads
+act on it) gets a ``ModelValidityWarning``, as do segments over :data:`MAX_SEGMENT_LENGTH_M`.
 """
 
 from __future__ import annotations
@@ -91,13 +99,13 @@ import pandas as pd
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from . import earth
+from . import earth, kepler
 from .atmosphere import AtmosphereModel, get_atmosphere
 from .projectiles import Projectile, check_rigid_body
 from .sixdof import DENSITY_ALTITUDES, RigidBodyModel, rigid_body_model, trajectory_table
 from .validation import ModelValidityWarning, check_choice, check_range, finite_scalar
 
-__all__ = ["SEGMENT_LENGTH_M", "COEFFICIENT_POINTS", "GRAVITY_MODELS", "MAX_SMALL_ANGLE_DEG",
+__all__ = ["SEGMENT_LENGTH_M", "MAX_SEGMENT_LENGTH_M", "COEFFICIENT_POINTS", "GRAVITY_MODELS", "MAX_SMALL_ANGLE_DEG",
            "DENSE_AIR_PA", "SegmentCoefficients", "segment_coefficients", "epicyclic_roots",
            "propagate_segment", "simulate_mlt", "linear_theory_derivatives",
            "simulate_linear_theory_limit"]
@@ -106,6 +114,7 @@ SEGMENT_LENGTH_M = 1000.0
 COEFFICIENT_POINTS = ("start", "middle", "average")
 GRAVITY_MODELS = ("central", "uniform")
 MAX_SMALL_ANGLE_DEG = 10.0
+MAX_SEGMENT_LENGTH_M = 10_000.0
 DENSE_AIR_PA = 1000.0
 
 _R = earth.RADIUS_M
@@ -264,7 +273,8 @@ def propagate_segment(model: RigidBodyModel, state, c: SegmentCoefficients, rows
 
 class _Segment(NamedTuple):
     start: tuple
-    coefficients: SegmentCoefficients
+    coefficients: SegmentCoefficients  # frozen at coefficients_at (eq L8)
+    start_coefficients: SegmentCoefficients
     rows: tuple
     secant: float
     time_s: float
@@ -297,7 +307,7 @@ def _solve_segment(model, state, length, coefficients_at, aerodynamics, uniform)
     rows1 = _rotation(end[4], end[5])
     rows = tuple(tuple((a + b) / 2 for a, b in zip(r0, r1)) for r0, r1 in zip(rows0, rows1))
     secant = (secant0 + 1.0 / math.cos(end[4])) / 2
-    return _Segment(state, chosen, rows, secant, 0.0, length)
+    return _Segment(state, chosen, start, rows, secant, 0.0, length)
 
 
 def _altitude(state) -> float:
@@ -311,20 +321,25 @@ def _radial_velocity(segment: _Segment, model, s: float) -> float:
     return state[0] * vx + state[1] * vy + (state[2] - _R) * vz
 
 
-def _check_validity(segments, model, name):
-    for segment in segments:
-        c, state = segment.coefficients, segment.start
-        u_w, v_w, w_w = _apply(segment.rows, model.wind)
-        alpha = math.degrees(math.atan2(math.hypot(state[7] - v_w, state[8] - w_w),
-                                        state[6] - u_w))
-        if alpha > MAX_SMALL_ANGLE_DEG and c.dynamic_pressure > DENSE_AIR_PA:
-            warnings.warn(
-                f"MLT flight of {name}: the angle of attack reaches {alpha:.1f} deg at "
-                f"{_altitude(state) / 1e3:.1f} km where the dynamic pressure is "
-                f"{c.dynamic_pressure / 1e3:.1f} kPa; linear theory assumes small angles "
-                "where the air acts, so this trajectory is outside its validity",
-                ModelValidityWarning, stacklevel=3)
-            return
+def _validity_problem(segment: _Segment, model) -> str | None:
+    """Why ``segment`` is outside linear theory's validity in the air, or None: a growing
+    epicyclic mode or an angle of attack beyond :data:`MAX_SMALL_ANGLE_DEG`, at its start,
+    where the dynamic pressure exceeds :data:`DENSE_AIR_PA`."""
+    state, pressure = segment.start, segment.start_coefficients.dynamic_pressure
+    if pressure <= DENSE_AIR_PA:  # also every flight without aerodynamics
+        return None
+    u_w, v_w, w_w = _apply(_rotation(state[4], state[5]), model.wind)
+    air_velocity = (state[6] - u_w, state[7] - v_w, state[8] - w_w)
+    where = f"at {_altitude(state) / 1e3:.1f} km ({pressure / 1e3:.1f} kPa dynamic pressure)"
+    growth = max(root.real for root in epicyclic_roots(segment.start_coefficients, model.d))
+    if growth * segment.length > 1.0:
+        return (f"an epicyclic mode grows e-fold every {model.d / growth:.3g} m {where}: the "
+                "projectile is dynamically unstable there and its angle of attack cannot stay "
+                "small")
+    alpha = math.degrees(math.atan2(math.hypot(*air_velocity[1:]), air_velocity[0]))
+    if alpha > MAX_SMALL_ANGLE_DEG:
+        return (f"the angle of attack reaches {alpha:.1f} deg {where}; linear theory assumes "
+                "small angles where the air acts")
 
 
 def simulate_mlt(projectile: Projectile, *, elevation_deg: float = 50.0,
@@ -367,12 +382,25 @@ def simulate_mlt(projectile: Projectile, *, elevation_deg: float = 50.0,
     model = rigid_body_model(projectile, air, (0.0, crosswind, 0.0), density_altitude)
     length = length_m / model.d
     uniform = gravity == "uniform"
+    try:  # no flight, with or without drag, travels farther than a drag-free one at V0
+        longest_m = speed * kepler.ballistic_conic(speed, math.radians(elevation)).time_of_flight_s
+    except ValueError:  # escape speed: no bound
+        longest_m = math.inf
+    if length_m > longest_m:
+        raise ValueError(f"segment_length_m = {length_m:g} m is longer than the flight: even "
+                         f"without drag it travels at most {longest_m / 1e3:.0f} km")
+    if length_m > MAX_SEGMENT_LENGTH_M:
+        warnings.warn(f"segment_length_m = {length_m:g} m: MLT updates its coefficients every "
+                      f"500 m to 2 km; beyond {MAX_SEGMENT_LENGTH_M / 1e3:g} km, density, Mach "
+                      "and the coefficients change too much within a segment to be frozen",
+                      ModelValidityWarning, stacklevel=2)
 
     state = (0.0, 0.0, 0.0, 0.0, math.radians(elevation), 0.0, speed, 0.0, 0.0, spin, 0.0, 0.0)
-    segments, time, impact, apogee = [], 0.0, False, None
+    segments, time, impact, apogee, problem = [], 0.0, False, None, None
     while time < max_time:
         segment = _solve_segment(model, state, length, coefficients_at, aerodynamics,
                                  uniform)._replace(time_s=time)
+        problem = problem or _validity_problem(segment, model)
         duration = segment.duration_s(model)
         end = segment.at(model, length)
         if _altitude(end) < 0.0:
@@ -397,7 +425,9 @@ def simulate_mlt(projectile: Projectile, *, elevation_deg: float = 50.0,
             break
         segments.append(segment)
         state, time = end, time + duration
-    _check_validity(segments, model, projectile.name)
+    if problem:
+        warnings.warn(f"MLT flight of {projectile.name} is outside linear theory's validity: "
+                      f"{problem}", ModelValidityWarning, stacklevel=2)
 
     end_time = segments[-1].time_s + segments[-1].duration_s(model)
     times = np.append(np.arange(0.0, end_time, step), end_time)
@@ -407,6 +437,10 @@ def simulate_mlt(projectile: Projectile, *, elevation_deg: float = 50.0,
                                       * segments[i].coefficients.speed / model.d)
                        for i, t in zip(index, times)]).T
     frame = trajectory_table(model, times, states)
+    if np.any(frame.altitude_m.to_numpy()[:-1] < -1.0):
+        raise RuntimeError(f"the MLT flight of {projectile.name} passes below the ground inside "
+                           f"a segment of {length_m:g} m (ends are checked for the impact): "
+                           "shorten segment_length_m")
     if apogee is not None:
         top = trajectory_table(model, np.array([apogee[0]]), np.array(apogee[1])[:, None])
         apogee_values = (apogee[0], float(top.altitude_m.iloc[0]),
