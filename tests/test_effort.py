@@ -1,9 +1,14 @@
-"""The operation counter follows its stated rule, and the counted MKS code is the MKS."""
+"""The operation counter follows its stated rule (operators, loops, branches, complex weight),
+the counted MKS code is the MKS, and MLT is counted call by call as it runs."""
+
+import functools
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
-from harp_analysis import effort, mks
+from harp_analysis import atmosphere, effort, mks, mlt, sixdof
 from harp_analysis.projectiles import BASELINE, HP
 
 
@@ -28,3 +33,119 @@ def test_counted_mks_apogee_is_the_mks(projectile, elevation):
     apogee = effort.mks_apogee(projectile.launch_speed_m_s, np.radians(elevation), cd0,
                                projectile.mass_kg, projectile.reference_area_m2)
     assert apogee == pytest.approx(solution.apogee_altitude("eq_6_4"), rel=1e-9)
+
+
+_TABLE = (1.0, 2.0, 3.0, 4.0)
+
+
+def _loops(x, items):
+    """A 3-trip range loop of 2 operations (6), a generator over the module's 4-item _TABLE
+    (1 each) and the add of its sum (5), and a loop over ``items`` of 1 operation (5 trips when
+    the caller says so): 16."""
+    total = 0.0
+    for i in range(3):
+        total = total + x * i
+    total = total + sum(c * x for c in _TABLE)
+    for item in items:
+        total = total - item
+    return total
+
+
+def _branches(x):
+    """The test (1), then the costlier of the early return (2) and the rest: an add (1) and
+    the costlier branch of the conditional expression (3, not 1): 5."""
+    if x > 0:
+        return x * x * x
+    y = x + 1
+    return y * y + y / 2 if y else -y
+
+
+def _nested(x):
+    """A nested function of 2 operations called twice (4), the square and the add: 6."""
+    def twice(v):
+        return 2 * v + 1
+    return twice(x) + twice(x * x)
+
+
+def test_loops_count_once_per_item():
+    assert effort.count_flops(_loops, trips={"items": 5}) == 6 + 5 + 5
+    with pytest.raises(ValueError, match="'items' of unknown length"):
+        effort.count_flops(_loops)
+
+
+def test_branches_count_along_the_costliest_path():
+    assert effort.count_flops(_branches) == 5
+
+
+def test_nested_functions_count_per_call():
+    assert effort.count_flops(_nested) == 6
+
+
+def test_complex_weight_multiplies_every_operation():
+    assert effort.count_flops(_sample, weight=effort.COMPLEX_WEIGHT) == 4 * 16
+    costs = effort._mlt_costs()
+    for function in (mlt._phi, mlt._epicyclic_solution):
+        assert costs[function.__code__] == effort.COMPLEX_WEIGHT * effort.count_flops(function)
+    # _phi along its costlier path: |z| > 1 (2), the series' multiply-add per term, its last
+    # three steps (6); the exponential branch (16 operations) is the cheaper one.
+    assert costs[mlt._phi.__code__] == 4 * (2 + 2 * len(mlt._PHI3_SERIES) + 6)
+
+
+def test_sixdof_coefficient_loop_has_nine_items():
+    model = sixdof.rigid_body_model(HP, atmosphere.get_atmosphere("two_segment"),
+                                    (0.0, 0.0, 0.0), "flat")
+    assert len(model.rows[0]) == len(model.slopes[0]) == 9 == next(
+        iter(effort._COEFFICIENTS.values()))
+
+
+_FLIGHT = dict(elevation_deg=50.0, crosswind_m_s=5.0, density_altitude="spherical")
+
+
+def test_mlt_calls_per_segment():
+    """Two coefficient evaluations and three propagations a segment, one more propagation per
+    radial-velocity check, one per brentq evaluation and one for the apogee state."""
+    calls, table = effort._mlt_run(HP, **_FLIGHT)
+    n = table.attrs["n_segments"]
+    count = {code.co_qualname: k for code, k in calls.items()
+             if code.co_filename == mlt.__file__}
+    assert count["segment_coefficients"] == 2 * n
+    assert count["_solve_segment"] == count["_Segment.duration_s"] == n
+    brentq_evaluations = count.get("simulate_mlt.<locals>.<lambda>", 0)
+    assert count["propagate_segment"] == (3 * n + count["_radial_velocity"]
+                                          + brentq_evaluations + 1)
+    assert count["_phi"] >= 4 * count["propagate_segment"]
+    assert n / 4 < count["_radial_velocity"] < 3 * n / 4  # the checks stop at the apogee
+
+
+def test_mlt_counts_every_function_with_arithmetic():
+    """Each function of the package that MLT's loop runs every segment is costed, runs inside
+    a costed one (a generator, a nested function), is a diagnostic, or does no arithmetic."""
+    calls, table = effort._mlt_run(HP, **_FLIGHT)
+    costs = effort._mlt_costs()
+    costed = {code.co_qualname for code in costs}
+    package = Path(effort.__file__).parent
+    for code, k in calls.items():
+        if (code in costs or k < table.attrs["n_segments"]
+                or Path(code.co_filename).parent != package):
+            continue
+        if code.co_qualname.split(".<locals>.")[0] in costed - {code.co_qualname}:
+            continue
+        if code.co_name in effort._MLT_DIAGNOSTICS:
+            continue
+        function = functools.reduce(getattr, code.co_qualname.split("."),
+                                    sys.modules[f"harp_analysis.{Path(code.co_filename).stem}"])
+        assert effort.count_flops(function) == 0, code.co_qualname
+
+
+def test_mlt_count_scales_with_the_segments():
+    coarse = effort.mlt_flops(HP, segment_length_m=1000.0, **_FLIGHT)
+    fine = effort.mlt_flops(HP, segment_length_m=500.0, **_FLIGHT)
+    assert fine / coarse == pytest.approx(2.0, rel=0.03)
+
+
+def test_effort_table_rows():
+    table = effort.effort_table()
+    assert list(table.index[:4]) == ["6DOF", "3DOF", "MLT", "MKS (3 terms)"]
+    assert table.flops["3DOF"] < table.flops["MLT"] < table.flops["6DOF"]
+    assert effort.orders_of_magnitude("MLT") == pytest.approx(
+        np.log10(table.flops["MLT"] / table.flops["MKS (3 terms)"]))
