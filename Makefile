@@ -26,6 +26,7 @@ benchmark: $(STAMP)
 	$(BIN)/python benchmarks/bench_atmosphere.py
 	$(BIN)/python benchmarks/bench_trajectories.py
 	$(BIN)/python benchmarks/bench_mks.py
+	$(BIN)/python benchmarks/bench_mlt.py
 
 clean-venv:
 	rm -rf $(VENV)
