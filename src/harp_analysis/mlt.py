@@ -21,7 +21,8 @@ k = pi rho D^3 / 8 and (v_w, w_w) the wind resolved in N.
 (L1) Linear-theory assumptions on the 6DOF's translation and rotation equations: the lateral
      states v, w, q, r are small, so their products (the frame-rate terms q w - r v,
      r tan(theta) w, r tan(theta) v, tan(theta) r^2, tan(theta) q r, and the yaw-drag term
-     CX2 (v^2 + w^2)/V^2) are dropped and u = V where u multiplies q or r.
+     CX2 (v^2 + w^2)/V^2) are dropped and u = V where u multiplies q or r (which also drops
+     r u_w and q u_w, first order in the wind but a 1e-4 relative effect for 5 m/s).
 (L2) Axial velocity, drag with one factor V frozen: ``u' = -a (u - u_w) + D g_u / V``,
      a = -k CX0 / m. With V and the gravity component g_u frozen over a segment this is
      linear with constant coefficients: u(s) = u0 e^{-a s} + (a u_w + D g_u/V) s phi1(-a s),
@@ -315,8 +316,8 @@ def _altitude(state) -> float:
     return math.sqrt(x * x + y * y + (_R - z) ** 2) - _R
 
 
-def _radial_velocity(segment: _Segment, model, s: float) -> float:
-    state = segment.at(model, s)
+def _radial_velocity(segment: _Segment, state) -> float:
+    """r . dr/dt of the segment's closed-form positions (eq L7) at ``state`` (up to 1/|r|)."""
     vx, vy, vz = _apply_transpose(segment.rows, state[6:9])
     return state[0] * vx + state[1] * vy + (state[2] - _R) * vz
 
@@ -412,11 +413,13 @@ def simulate_mlt(projectile: Projectile, *, elevation_deg: float = 50.0,
             segments.append(segment)
             impact = True
             break
-        if apogee is None and _radial_velocity(segment, model, length) < 0.0:
-            # The trapezoid rotation changes between segments, so the radial velocity can
-            # change sign at a boundary: the apogee is then the segment's start.
-            s_top = (brentq(lambda s: _radial_velocity(segment, model, s), 0.0, length,
-                            xtol=1e-9) if _radial_velocity(segment, model, 0.0) > 0.0 else 0.0)
+        if apogee is None and _radial_velocity(segment, end) < 0.0:
+            # The positions are piecewise closed forms whose rotation T (eq L7) is fixed within a
+            # segment and steps at its ends, where the direction of dr/dt turns by the segment's
+            # change of pitch: the highest point is usually a segment boundary (the kink).
+            s_top = (brentq(lambda s: _radial_velocity(segment, segment.at(model, s)), 0.0,
+                            length, xtol=1e-9)
+                     if _radial_velocity(segment, segment.start) > 0.0 else 0.0)
             apogee = (time + s_top * model.d / segment.coefficients.speed,
                       segment.at(model, s_top))
         if time + duration > max_time:
