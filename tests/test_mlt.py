@@ -331,5 +331,5 @@ def test_flight_table_matches_the_6dof():
 
 
 def test_segments_longer_than_the_updates_of_linear_theory_warn():
-    with pytest.warns(mlt.ModelValidityWarning, match="segment_length_m = 20000 m"):
+    with pytest.warns(ModelValidityWarning, match="segment_length_m = 20000 m"):
         mlt.simulate_mlt(LP, segment_length_m=20_000.0)

@@ -2,8 +2,8 @@
 (issue #7): the 6DOF's own convergence, where in a segment the coefficients are frozen, what
 the products dropped by linear theory cost, and which inertias the projectiles carry.
 
-Distances between two flights are taken at the same time along the flight, in the flat
-launch frame both rigid-body methods share (the 3DOF's positions are rotated into it). "Like
+Distances between two flights are taken at the same time along the flight
+(:func:`harp_analysis.scenarios.max_distance_m`, on the launch point's axes). "Like
 with like" means the same ``density_altitude`` for 6DOF and MLT; the 3DOF always takes the
 atmosphere at the spherical altitude, so its comparison with the 6DOF is like with like only
 for ``density_altitude="spherical"`` (:mod:`.sixdof` explains the flat-altitude gap).
@@ -17,31 +17,17 @@ from functools import cache
 import numpy as np
 import pandas as pd
 
-from . import earth, mlt, scenarios
+from . import mlt, scenarios
 from .projectiles import get_projectile
+from .scenarios import max_distance_m
 from .sixdof import simulate_6dof
 from .validation import ModelValidityWarning
 
-__all__ = ["max_distance_m", "method_comparison", "mlt_max_position_difference_km",
+__all__ = ["method_comparison", "mlt_max_position_difference_km",
            "sixdof_convergence", "coefficient_point_convergence", "linear_theory_budget",
            "inertia_comparison", "SEGMENT_LENGTHS_M"]
 
 SEGMENT_LENGTHS_M = (2000.0, 1000.0, 500.0, 100.0)
-
-
-def _positions(flight: pd.DataFrame, three_dof: bool = False) -> np.ndarray:
-    """Positions (n, 3) in the flat launch frame (x downrange, y right, z down)."""
-    axes = scenarios._launch_axes(flight, six_dof=not three_dof)  # (up, downrange, right)
-    return np.column_stack([axes[:, 1], axes[:, 2], earth.RADIUS_M - axes[:, 0]])
-
-
-def max_distance_m(a: pd.DataFrame, b: pd.DataFrame, *, b_three_dof: bool = False) -> float:
-    """Largest distance (m) between flights ``a`` and ``b`` (flat-frame tables; ``b`` may be a
-    3DOF table) at ``a``'s times inside both flights."""
-    a = a[a.time_s <= b.time_s.iloc[-1]]
-    pb = _positions(b, b_three_dof)
-    at = np.column_stack([np.interp(a.time_s, b.time_s, pb[:, i]) for i in range(3)])
-    return float(np.max(np.linalg.norm(_positions(a) - at, axis=1)))
 
 
 def _summary(flight: pd.DataFrame) -> dict:

@@ -24,7 +24,7 @@ from .validation import check_choice, check_range, finite_scalar
 
 __all__ = ["REFERENCE_ELEVATION_DEG", "REFERENCE_CROSSWIND_M_S", "reference_3dof",
            "reference_6dof", "reference_mlt", "RIGID_BODY_METHODS", "rigid_body_flight",
-           "max_position_difference_km", "swerve",
+           "max_distance_m", "max_position_difference_km", "swerve",
            "angle_of_attack_at_apogee_deg",
            "launch_drag_to_gravity", "drag_to_gravity_crossing_altitude_km",
            "max_drag_to_gravity_above", "angular_momentum_loss_share_below",
@@ -144,28 +144,30 @@ def _launch_axes(flight: pd.DataFrame, six_dof: bool) -> np.ndarray:
     return np.column_stack([flight.x_m, flight.y_m, -flight.z_m])
 
 
-def _common_times(projectile: str, density_altitude: str, method: str = "6DOF"):
-    six = rigid_body_flight(method, projectile, density_altitude)
-    three = reference_3dof(projectile)
-    six = six[six.time_s <= three.time_s.iloc[-1]]
-    positions3 = _launch_axes(three, six_dof=False)
-    at_six = np.column_stack([np.interp(six.time_s, three.time_s, positions3[:, i])
-                              for i in range(3)])
-    return six, three, at_six
+def max_distance_m(a: pd.DataFrame, b: pd.DataFrame, *, a_three_dof: bool = False,
+                   b_three_dof: bool = False) -> float:
+    """Largest distance (m) between flights ``a`` and ``b`` at ``a``'s times inside both (each
+    a 6DOF/MLT flat-frame table, or a 3DOF table when flagged)."""
+    a = a[a.time_s <= b.time_s.iloc[-1]]
+    pb = _launch_axes(b, six_dof=not b_three_dof)
+    at = np.column_stack([np.interp(a.time_s, b.time_s, pb[:, i]) for i in range(3)])
+    return float(np.max(np.linalg.norm(_launch_axes(a, six_dof=not a_three_dof) - at, axis=1)))
 
 
 def max_position_difference_km(projectile: str, density_altitude: str = "flat",
                                method: str = "6DOF") -> float:
     """Largest distance (km) between the 3DOF's position and a rigid-body ``method``'s at the
     same time."""
-    six, _, at_six = _common_times(projectile, density_altitude, method)
-    return float(np.max(np.linalg.norm(_launch_axes(six, six_dof=True) - at_six, axis=1)) / 1e3)
+    return max_distance_m(rigid_body_flight(method, projectile, density_altitude),
+                          reference_3dof(projectile), b_three_dof=True) / 1e3
 
 
 def swerve(projectile: str, method: str = "6DOF") -> pd.DataFrame:
     """Fig 2.7: a rigid-body ``method``'s cross range minus the 3DOF's at the same time,
     against range."""
-    six, three, _ = _common_times(projectile, "flat", method)
+    three = reference_3dof(projectile)
+    six = rigid_body_flight(method, projectile, "flat")
+    six = six[six.time_s <= three.time_s.iloc[-1]]
     cross3 = np.interp(six.time_s, three.time_s, three.cross_range_m)
     return pd.DataFrame({"time_s": six.time_s, "ground_range_m": six.ground_range_m,
                          "swerve_m": six.cross_range_m - cross3})
