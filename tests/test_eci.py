@@ -1,17 +1,18 @@
-"""The rotating-Earth corrections of Chapter 5 against geometry, the non-rotating MKS, and the
-derived columns printed in Appendices D (Barbados) and E (Yuma)."""
+"""The rotating-Earth corrections of Chapter 5 against geometry and the non-rotating MKS
+(the appendices' columns are tested in test_harp.py)."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from harp_analysis import earth, eci, mks
-from harp_analysis.harp_data import load_appendix
 from harp_analysis.projectiles import BASELINE
-from harp_analysis.sites import BARBADOS, get_site
+from harp_analysis.sites import BARBADOS
 
 DEG = math.pi / 180
+NO_TANGENT = replace(eci.CONSISTENT, name="no V_tangent", include_tangent=False)
 
 
 def test_barbados_surface_speed_eq_6_16():
@@ -27,8 +28,8 @@ def _launch(speed, elevation_deg, bearing_deg, latitude_deg, **kwargs):
 
 def test_due_east_at_the_equator_stays_in_the_vertical_plane():
     elevation = np.array([30.0, 60.0, 85.0])
-    for include_tangent in (True, False):
-        launch = _launch(1800.0, elevation, 90.0, 0.0, include_tangent=include_tangent)
+    for model in (eci.CONSISTENT, NO_TANGENT):
+        launch = _launch(1800.0, elevation, 90.0, 0.0, model=model)
         assert launch.azimuth_rad == pytest.approx(90 * DEG, abs=1e-12)
         assert np.all(launch.elevation_rad < elevation * DEG)   # V leans east, lower
     # Vrel, omega x r0 and V share the east-up plane: mu is the drop in elevation
@@ -37,7 +38,7 @@ def test_due_east_at_the_equator_stays_in_the_vertical_plane():
 
 
 def test_due_north_at_the_equator_turns_east():
-    launch = _launch(1800.0, 45.0, 0.0, 0.0, include_tangent=False)
+    launch = _launch(1800.0, 45.0, 0.0, 0.0, model=NO_TANGENT)
     expected = math.atan2(earth.ROTATION_RATE_RAD_S * earth.RADIUS_M, 1800 * math.cos(45 * DEG))
     assert launch.azimuth_rad == pytest.approx(expected, rel=1e-12)
     # V_tangent (on the side away from Vrel) turns it further east
@@ -61,8 +62,8 @@ def test_tangent_velocity_lies_along_the_cross_track_drag():
         pytest.approx(0.0, abs=1e-6)
     assert direction @ -launch.relative_m_s > 0
     # so adding it turns V further from Vrel: lower and more eastward for this shot
-    with_tangent = _launch(1800.0, 85.0, 109.0, 13.0, include_tangent=True)
-    without = _launch(1800.0, 85.0, 109.0, 13.0, include_tangent=False)
+    with_tangent = _launch(1800.0, 85.0, 109.0, 13.0, model=eci.CONSISTENT)
+    without = _launch(1800.0, 85.0, 109.0, 13.0, model=NO_TANGENT)
     assert with_tangent.elevation_rad < without.elevation_rad
     assert with_tangent.azimuth_rad < without.azimuth_rad
 
@@ -90,122 +91,36 @@ def test_eci_solution_without_rotation_is_the_non_rotating_mks():
     assert solution.apogee_altitude() == pytest.approx(reference.apogee_altitude(), rel=1e-9)
 
 
-def test_eci_solution_scales():
-    launch = _launch(1800.0, 85.0, 109.0, 13.0)
+@pytest.mark.parametrize("decay", ["printed", "consistent"])
+def test_eci_solution_scales(decay):
+    model = replace(eci.CONSISTENT, name=decay, decay=decay)
+    launch = _launch(1800.0, 85.0, 109.0, 13.0, model=model)
     solution = eci.eci_solution(1800.0, 85 * DEG, 109 * DEG, 13 * DEG, drag_area_m2=2.7e-3,
-                                mass_kg=84.0, surface_density_kg_m3=1.225)
+                                mass_kg=84.0, surface_density_kg_m3=1.225, model=model)
     cos_mu = math.cos(launch.misalignment_rad)
     assert solution.drive_scale[0, 0] == pytest.approx(cos_mu * launch.speed_ratio_squared)
-    assert solution.decay_scale[0, 0] == pytest.approx(cos_mu)
+    expected = cos_mu * (launch.speed_ratio_squared if decay == "consistent" else 1.0)
+    assert solution.decay_scale[0, 0] == pytest.approx(expected)
     assert solution.h_inf[0, 0] == pytest.approx(launch.asymptotic_angular_momentum_m2_s)
 
 
-# --- Appendices D and E ------------------------------------------------------------------------
-# column: (printed unit per SI unit, printed half-unit)
-COLUMNS = {"mach": (1.0, 0.005), "misalignment_angle_rad": (1 / DEG, 0.005),
-           "tangent_speed_m_s": (1e-3, 0.005), "corrected_elevation_rad": (1 / DEG, 0.005),
-           "corrected_speed_m_s": (1e-3, 0.005), "corrected_azimuth_rad": (1 / DEG, 0.005),
-           "beta": (1.0, 0.005), "initial_angular_momentum_m2_s": (1e-6, 0.005)}
-# Measured largest |computed - printed| (printed units) and whether printed precision plus the
-# effect of rounding Vo to 0.01 km/s explains it.
-MEASURED = {
-    ("barbados", "mach"): (0.010, True), ("yuma", "mach"): (0.015, True),
-    ("barbados", "misalignment_angle_rad"): (0.030, True),
-    ("yuma", "misalignment_angle_rad"): (0.028, True),
-    # eq 5.8 with the Cd0 A of the Beta column gives 7-15 % less than the printed V tangent
-    ("barbados", "tangent_speed_m_s"): (0.012, False),
-    ("yuma", "tangent_speed_m_s"): (0.012, False),
-    ("barbados", "corrected_elevation_rad"): (0.020, True),
-    ("yuma", "corrected_elevation_rad"): (0.027, True),
-    ("barbados", "corrected_speed_m_s"): (0.009, True),
-    ("yuma", "corrected_speed_m_s"): (0.007, True),
-    # a systematic offset: computed azimuths are 0.22-0.25 deg (Barbados), 0.06-0.08 deg (Yuma) low
-    ("barbados", "corrected_azimuth_rad"): (0.25, False),
-    ("yuma", "corrected_azimuth_rad"): (0.082, False),
-    # round 213 comes out 0.1949 (printed 0.20); Yuma's printed 0.16 needs a 3 % smaller Cd0 A
-    ("barbados", "beta"): (0.0052, False), ("yuma", "beta"): (0.007, False),
-    # Barbados L0 is 3.2-5.3 km^2/s (0.1 %) above the printed Li for every round
-    ("barbados", "initial_angular_momentum_m2_s"): (5.4, False),
-    ("yuma", "initial_angular_momentum_m2_s"): (2.6, True),
-}
-
-
-@pytest.fixture(scope="module")
-def comparisons():
-    result = {}
-    for site in ("barbados", "yuma"):
-        launch_site = get_site(site)
-        printed = load_appendix(site)
-        printed = printed[~printed["duplicate_of_earlier_row"]].reset_index(drop=True)
-        computed = eci.appendix_columns(site)
-        drag_area, sound = eci.fit_drag_area_m2(), eci.fit_speed_of_sound_m_s(site)
-
-        def columns(offset):
-            speed = printed["muzzle_speed_m_s"].to_numpy() + offset
-            launch = eci.launch_correction(
-                speed, launch_site.elevation_rad, launch_site.gun_bearing_rad,
-                launch_site.latitude_rad, drag_area_m2=drag_area,
-                mass_kg=printed["mass_kg"].to_numpy(),
-                surface_density_kg_m3=launch_site.surface_density_kg_m3, include_tangent=False)
-            return {"mach": speed / sound, "misalignment_angle_rad": launch.misalignment_rad,
-                    "tangent_speed_m_s": launch.tangent_speed_m_s,
-                    "corrected_elevation_rad": launch.elevation_rad,
-                    "corrected_speed_m_s": launch.speed_m_s,
-                    "corrected_azimuth_rad": launch.azimuth_rad, "beta": launch.beta,
-                    "initial_angular_momentum_m2_s": launch.initial_angular_momentum_m2_s}
-        low, high = columns(-5.0), columns(5.0)
-        assert list(computed["round_number"]) == list(printed["round_number"])
-        for column, (scale, half_unit) in COLUMNS.items():
-            difference = (computed[column] - printed[column]).to_numpy() * scale
-            rounding = half_unit + np.max(np.abs(high[column] - low[column])) / 2 * scale
-            worst = int(np.argmax(np.abs(difference)))
-            result[site, column] = (np.abs(difference[worst]),
-                                    int(printed["round_number"][worst]), rounding)
-    return result
-
-
-@pytest.mark.parametrize("site, column", sorted(MEASURED))
-def test_appendix_column_agreement(comparisons, site, column):
-    worst, round_number, rounding = comparisons[site, column]
-    bound, explained = MEASURED[site, column]
-    assert worst <= bound, (f"{site} {column}: largest difference {worst:.4g} (round "
-                            f"{round_number}) exceeds the measured {bound:g}")
-    assert (worst <= rounding) == explained, (
-        f"{site} {column}: largest difference {worst:.4g} (round {round_number}) against the "
-        f"rounding tolerance {rounding:.4g}; expected explained={explained}")
-
-
-def test_li_is_l0_not_l_inf():
-    computed = eci.appendix_columns("barbados")
-    printed = load_appendix("barbados").drop_duplicates("round_number").reset_index(drop=True)
-    ratio = computed["initial_angular_momentum_m2_s"] / printed["initial_angular_momentum_m2_s"]
-    assert np.all(np.abs(ratio - 1) < 2e-3)   # L_inf would be about 0.84 L0
-
-
-@pytest.mark.parametrize("site", ["barbados", "yuma"])
-def test_fitted_speed_of_sound_is_physical_and_central(site):
-    """Vo/Mach of the printed rows brackets the fit, which is an air temperature of 280-310 K."""
-    table = load_appendix(site)
-    per_round = table["muzzle_speed_m_s"] / table["mach"]
-    fitted = eci.fit_speed_of_sound_m_s(site)
-    assert per_round.min() <= fitted <= per_round.max()
-    assert np.sqrt(1.4 * 287.05 * 280) < fitted < np.sqrt(1.4 * 287.05 * 310)
-
-
-def test_fitted_drag_area_minimises_the_beta_misfit():
-    """The least-squares Cd0 A: moving it 1 % either way worsens the fit to the printed betas."""
-    printed = load_appendix("barbados").drop_duplicates("round_number")["beta"].to_numpy()
-
-    def misfit(drag_area):
-        computed = eci.appendix_columns("barbados", drag_area_m2=drag_area)["beta"].to_numpy()
-        return np.sum((computed - printed) ** 2)
-
-    best = eci.fit_drag_area_m2()
-    assert misfit(best) < misfit(0.99 * best) and misfit(best) < misfit(1.01 * best)
+def test_dissertation_model_takes_each_angle_where_it_says():
+    """beta at the gun's elevation, tau and eq 5.8's climb at the corrected one, (Vrel/V)^2 of
+    the launch velocity (V_tangent included) by eq 5.3."""
+    launch = _launch(1800.0, 85.0, 109.0, 13.0, model=eci.DISSERTATION)
+    gun = 85 * DEG
+    assert launch.beta == pytest.approx(mks.decay_factor_beta(2.7e-3, 1.225, 1.0, 84.0, gun))
+    assert launch.tau == pytest.approx(mks.decay_rate_tau(launch.corrected_elevation_rad))
+    assert launch.tangent_speed_m_s == pytest.approx(eci.tangent_speed(
+        2.7e-3, 1.225, 84.0, launch.misalignment_rad, 1800.0, launch.corrected_elevation_rad))
+    assert launch.speed_ratio_squared == pytest.approx(
+        eci.speed_ratio_squared_eq_5_3(launch.velocity_m_s, 13 * DEG), rel=1e-12)
+    assert launch.beta_column == pytest.approx(launch.beta * math.cos(launch.misalignment_rad))
 
 
 @pytest.mark.parametrize("call, name", [
-    (lambda: eci.appendix_columns("mars"), "site"),
+    (lambda: eci.get_model("newtonian"), "model"),
+    (lambda: replace(eci.CONSISTENT, decay="exact"), "decay"),
     (lambda: eci.relative_velocity(1800.0, 1.4, 2 * math.pi, 0.2), "bearing_rad"),
     (lambda: eci.relative_velocity(1800.0, 1.4, 1.0, 91 * DEG), "latitude_rad"),
     (lambda: eci.surface_velocity(91 * DEG), "latitude_rad"),

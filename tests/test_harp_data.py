@@ -32,7 +32,8 @@ def yuma():
 
 
 def test_checksums_verify():
-    assert verify_checksums() == ["appendix_d_barbados.tsv", "appendix_e_yuma.tsv"]
+    assert verify_checksums() == ["appendix_d_barbados.tsv", "appendix_e_yuma.tsv",
+                                  "muzzle_speeds.tsv"]
 
 
 def test_checksum_mismatch_names_file(tmp_path):

@@ -41,20 +41,17 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import pandas as pd
-
 from . import earth, mks
 from .atmosphere import TEXT_DECAY_CONSTANT_PER_M
-from .harp_data import load_appendix
-from .sites import get_site
 from .threedof import launch_frame
+from .sites import get_site
 from .validation import check_choice, check_range, finite_array
 
-__all__ = ["LaunchCorrection", "surface_velocity", "relative_velocity", "misalignment_angle",
+__all__ = ["EciModel", "CONSISTENT", "DISSERTATION", "PRINTED_COLUMNS", "MODELS", "get_model",
+           "LaunchCorrection", "surface_velocity", "relative_velocity", "misalignment_angle",
            "speed_ratio_squared", "speed_ratio_squared_eq_5_3", "tangent_speed",
            "tangent_direction", "elevation_azimuth", "initial_angular_momentum",
-           "asymptotic_angular_momentum", "launch_correction", "eci_solution",
-           "fit_speed_of_sound_m_s", "fit_drag_area_m2", "appendix_columns", "site_surface_speed_km_s",
+           "launch_correction", "eci_solution", "solution_for", "site_surface_speed_km_s",
            "inertial_positions"]
 
 _Z_AXIS = np.array([0.0, 0.0, 1.0])
@@ -161,39 +158,119 @@ def initial_angular_momentum(speed_m_s, elevation_rad, radius_m=earth.RADIUS_M):
     return speed_m_s * radius_m * np.cos(elevation_rad)
 
 
-def asymptotic_angular_momentum(initial_m2_s, beta, misalignment_rad):
-    """Eq 6.14 as printed: L_inf = L0 exp(-beta cos mu), without eq 6.9's (Vrel/V)^2."""
-    return initial_m2_s * np.exp(-beta * np.cos(misalignment_rad))
+@dataclass(frozen=True)
+class EciModel:
+    """The choices Chapters 5-6 leave open in launching the ECI MKS, named.
+
+    - ``include_tangent``: eq 6.15's V_tangent in the launch velocity.
+    - ``tangent_sine``: the sin(phi) of eq 5.8's straight climb: ``"gun"`` (phi_rel, the gun's
+      elevation, as printed) or ``"corrected"`` (the elevation of Vrel + omega x r0).
+    - ``beta_elevation``: eq 6.11's phi: ``"gun"`` or ``"launch"`` (of the launch velocity).
+    - ``tau_elevation``: eq 6.12's phi: ``"corrected"`` or ``"launch"``.
+    - ``speed_ratio``: (Vrel/V)^2 of eq 5.3 with V = ``"corrected"`` (Vrel + omega x r0) or
+      ``"launch"`` (the launch velocity, V_tangent included, against its air-relative part).
+    - ``decay``: ``"printed"`` (eq 6.14, L_inf = L0 exp(-beta cos mu)) or ``"consistent"``
+      (cos mu (Vrel/V)^2 in the decay as in the driving terms, as eq 3.23 requires).
+    - ``beta_column``: what the appendices' Beta column holds under this model: ``"beta"``
+      (eq 6.11) or ``"beta_cos_mu"`` (eq 6.14's exponent, beta cos mu).
+    """
+
+    name: str
+    include_tangent: bool
+    tangent_sine: str
+    beta_elevation: str
+    tau_elevation: str
+    speed_ratio: str
+    decay: str
+    beta_column: str = "beta"
+
+    def __post_init__(self):
+        for name, choices in (("tangent_sine", ("gun", "corrected")),
+                              ("beta_elevation", ("gun", "launch")),
+                              ("tau_elevation", ("corrected", "launch")),
+                              ("speed_ratio", ("corrected", "launch")),
+                              ("decay", ("printed", "consistent")),
+                              ("beta_column", ("beta", "beta_cos_mu"))):
+            check_choice(getattr(self, name), name, choices)
+
+
+#: The project's model: eqs 5.8 and 6.11-6.15 as printed, except the decay (eq 3.23).
+CONSISTENT = EciModel("consistent", include_tangent=True, tangent_sine="gun",
+                      beta_elevation="launch", tau_elevation="launch", speed_ratio="corrected",
+                      decay="consistent")
+#: The dissertation's own pipeline, recovered from Appendix E's Error column (:mod:`.harp`).
+DISSERTATION = EciModel("dissertation", include_tangent=True, tangent_sine="corrected",
+                        beta_elevation="gun", tau_elevation="corrected", speed_ratio="launch",
+                        decay="consistent", beta_column="beta_cos_mu")
+#: What Appendices D and E's corrected columns describe: no V_tangent, eq 6.14 as printed.
+PRINTED_COLUMNS = EciModel("printed_columns", include_tangent=False, tangent_sine="gun",
+                           beta_elevation="launch", tau_elevation="launch",
+                           speed_ratio="corrected", decay="printed")
+MODELS = {model.name: model for model in (DISSERTATION, CONSISTENT, PRINTED_COLUMNS)}
+
+
+def get_model(model: str | EciModel) -> EciModel:
+    """``model`` itself, or the named one of :data:`MODELS`; else ValueError naming it."""
+    if isinstance(model, EciModel):
+        return model
+    return MODELS[check_choice(model, "model", MODELS)]
 
 
 @dataclass(frozen=True)
 class LaunchCorrection:
     """Chapter 5's corrections of one or many launches (arrays broadcast together)."""
 
+    model: EciModel
     relative_m_s: np.ndarray           # Vrel, (3, ...)
     surface_m_s: np.ndarray            # omega x r0, (3, ...)
     misalignment_rad: np.ndarray       # mu between Vrel and Vrel + omega x r0
-    speed_ratio_squared: np.ndarray    # (Vrel/V)^2, V = Vrel + omega x r0
+    corrected_speed_m_s: np.ndarray    # |Vrel + omega x r0|, Appendices D/E's corrected columns
+    corrected_elevation_rad: np.ndarray
+    corrected_azimuth_rad: np.ndarray
     tangent_speed_m_s: np.ndarray      # eq 5.8
-    velocity_m_s: np.ndarray           # the launch velocity used: eq 6.15, with or without V_t
+    velocity_m_s: np.ndarray           # the launch velocity: eq 6.15, with or without V_t
     speed_m_s: np.ndarray
     elevation_rad: np.ndarray
     azimuth_rad: np.ndarray
-    beta: np.ndarray                   # eq 6.11 at the corrected elevation
+    speed_ratio_squared: np.ndarray    # (Vrel/V)^2, eq 5.3
+    beta: np.ndarray                   # eq 6.11
+    tau: np.ndarray                    # eq 6.12
     initial_angular_momentum_m2_s: np.ndarray      # eq 6.13
-    asymptotic_angular_momentum_m2_s: np.ndarray   # eq 6.14
+
+    @property
+    def drive_scale(self) -> np.ndarray:
+        """cos(mu) (Vrel/V)^2, the factor on beta in eqs 6.6-6.10."""
+        return np.cos(self.misalignment_rad) * self.speed_ratio_squared
+
+    @property
+    def decay_scale(self) -> np.ndarray:
+        """The factor on beta in the decay of the angular momentum (eq 6.14)."""
+        consistent = self.model.decay == "consistent"
+        return np.cos(self.misalignment_rad) * (self.speed_ratio_squared if consistent else 1.0)
+
+    @property
+    def beta_column(self) -> np.ndarray:
+        """The appendices' Beta column as ``model.beta_column`` reads it."""
+        cosine = np.cos(self.misalignment_rad) if self.model.beta_column == "beta_cos_mu" else 1.0
+        return self.beta * cosine
+
+    @property
+    def asymptotic_angular_momentum_m2_s(self) -> np.ndarray:
+        """L_inf = L0 exp(-beta x decay scale) (eq 6.14 or its consistent form)."""
+        return self.initial_angular_momentum_m2_s * np.exp(-self.beta * self.decay_scale)
 
 
 def launch_correction(speed_m_s, elevation_rad, bearing_rad, latitude_rad, *, drag_area_m2,
                       mass_kg, surface_density_kg_m3,
                       decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
                       rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S, radius_m=earth.RADIUS_M,
-                      include_tangent: bool = True) -> LaunchCorrection:
+                      model: str | EciModel = CONSISTENT) -> LaunchCorrection:
     """Eqs 5.1-5.8 and 6.11-6.16 for guns firing at ``speed_m_s`` (relative to the ground),
-    ``elevation_rad``, ``bearing_rad`` from ``latitude_rad``; ``drag_area_m2`` is Cd0 A.
+    ``elevation_rad``, ``bearing_rad`` from ``latitude_rad``; ``drag_area_m2`` is Cd0 A and
+    ``model`` (an :class:`EciModel` or its name) settles what the text leaves open.
 
-    mu and (Vrel/V)^2 refer to V = Vrel + omega x r0, as in Figs 5.2-5.3 and eq 5.3; the launch
-    velocity adds V_tangent (eq 6.15) only if ``include_tangent``."""
+    mu refers to V = Vrel + omega x r0, as in Figs 5.2-5.3 and the appendices' mu column."""
+    model = get_model(model)
     mass = check_range(finite_array(mass_kg, "mass_kg"), "mass_kg", low=0.0, low_inclusive=False,
                        unit="kg")
     drag_area = check_range(finite_array(drag_area_m2, "drag_area_m2"), "drag_area_m2", low=0.0,
@@ -208,106 +285,48 @@ def launch_correction(speed_m_s, elevation_rad, bearing_rad, latitude_rad, *, dr
                                radius_m=radius_m)
     corrected = relative + surface
     mu = misalignment_angle(relative, corrected)
-    tangent = tangent_speed(drag_area, density, mass, mu, _norm(relative), elevation_rad,
+    corrected_elevation, corrected_azimuth = elevation_azimuth(corrected, latitude_rad)
+    climb = {"gun": elevation_rad, "corrected": corrected_elevation}[model.tangent_sine]
+    tangent = tangent_speed(drag_area, density, mass, mu, _norm(relative), climb,
                             decay_constant_per_m)
-    velocity = corrected + include_tangent * tangent * tangent_direction(relative, corrected)
+    velocity = corrected + model.include_tangent * tangent * tangent_direction(relative, corrected)
     elevation, azimuth = elevation_azimuth(velocity, latitude_rad)
-    beta = mks.decay_factor_beta(drag_area, density, 1.0, mass, elevation,
-                                 decay_constant_per_m)                            # eq 6.11
+    ratio_of = {"corrected": corrected, "launch": velocity}[model.speed_ratio]
+    beta = mks.decay_factor_beta(
+        drag_area, density, 1.0, mass,
+        {"gun": elevation_rad, "launch": elevation}[model.beta_elevation], decay_constant_per_m)
+    tau = mks.decay_rate_tau({"corrected": corrected_elevation, "launch": elevation}[
+        model.tau_elevation], decay_constant_per_m, radius_m)
     speed = _norm(velocity)
-    initial = initial_angular_momentum(speed, elevation, radius_m)
-    return LaunchCorrection(relative, surface, mu, speed_ratio_squared(relative, corrected),
-                            tangent, velocity, speed, elevation, azimuth, beta, initial,
-                            asymptotic_angular_momentum(initial, beta, mu))
+    return LaunchCorrection(
+        model, relative, surface, mu, _norm(corrected), corrected_elevation, corrected_azimuth,
+        tangent, velocity, speed, elevation, azimuth,
+        speed_ratio_squared(ratio_of - surface, ratio_of), beta, tau,
+        initial_angular_momentum(speed, elevation, radius_m))
 
 
 def eci_solution(speed_m_s, elevation_rad, bearing_rad, latitude_rad, *, drag_area_m2, mass_kg,
                  surface_density_kg_m3, decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
                  rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S, radius_m=earth.RADIUS_M,
-                 include_tangent: bool = True, n_terms: int = 3, decay: str = "printed",
+                 model: str | EciModel = CONSISTENT, n_terms: int = 3,
                  warn: bool = True) -> mks.ModifiedKeplerSolution:
-    """The ECI Modified Kepler solution (eqs 6.6-6.15): the MKS launched at the corrected speed
-    and elevation, beta of eq 6.11, tau of eq 6.12, drive_scale = cos(mu) (Vrel/V)^2 (eqs 6.9-6.10)
-    and decay_scale = cos(mu) (eq 6.14 as printed, ``decay="printed"``) or cos(mu) (Vrel/V)^2
-    (``decay="consistent"``: the same beta' in the decay as in the driving terms, as eq 3.23
-    requires; see the module docstring)."""
-    check_choice(decay, "decay", ("printed", "consistent"))
-    launch = launch_correction(speed_m_s, elevation_rad, bearing_rad, latitude_rad,
-                               drag_area_m2=drag_area_m2, mass_kg=mass_kg,
-                               surface_density_kg_m3=surface_density_kg_m3,
-                               decay_constant_per_m=decay_constant_per_m,
-                               rotation_rate_rad_s=rotation_rate_rad_s, radius_m=radius_m,
-                               include_tangent=include_tangent)
-    cos_mu = np.cos(launch.misalignment_rad)
+    """The ECI Modified Kepler solution (eqs 6.6-6.15): the MKS launched at the launch speed
+    and elevation of :func:`launch_correction` with its beta and tau, drive_scale = cos(mu)
+    (Vrel/V)^2 (eqs 6.9-6.10) and the decay of ``model``."""
+    return solution_for(launch_correction(
+        speed_m_s, elevation_rad, bearing_rad, latitude_rad, drag_area_m2=drag_area_m2,
+        mass_kg=mass_kg, surface_density_kg_m3=surface_density_kg_m3,
+        decay_constant_per_m=decay_constant_per_m, rotation_rate_rad_s=rotation_rate_rad_s,
+        radius_m=radius_m, model=model), n_terms=n_terms, radius_m=radius_m, warn=warn)
+
+
+def solution_for(launch: LaunchCorrection, *, n_terms: int = 3, radius_m=earth.RADIUS_M,
+                 warn: bool = True) -> mks.ModifiedKeplerSolution:
+    """The ECI MKS of an already corrected launch (:func:`eci_solution` without recomputing)."""
     return mks.ModifiedKeplerSolution(
-        launch.speed_m_s, launch.elevation_rad, launch.beta,
-        mks.decay_rate_tau(launch.elevation_rad, decay_constant_per_m, radius_m),
-        n_terms=n_terms, radius_m=radius_m, drive_scale=cos_mu * launch.speed_ratio_squared,
-        decay_scale=cos_mu * (launch.speed_ratio_squared if decay == "consistent" else 1.0),
+        launch.speed_m_s, launch.elevation_rad, launch.beta, launch.tau, n_terms=n_terms,
+        radius_m=radius_m, drive_scale=launch.drive_scale, decay_scale=launch.decay_scale,
         warn=warn)
-
-
-# --- Appendices D and E ------------------------------------------------------------------------
-def _rounds(site):
-    frame = load_appendix(get_site(site).name)
-    return frame[~frame["duplicate_of_earlier_row"]].reset_index(drop=True)
-
-
-def fit_speed_of_sound_m_s(site: str) -> float:
-    """The speed of sound a behind the printed Mach column, Mach = Vo / a, by least squares in
-    1/a over the site's distinct rounds (343.46 m/s Barbados, 337.15 m/s Yuma)."""
-    rounds = _rounds(site)
-    speed, mach = rounds["muzzle_speed_m_s"].to_numpy(), rounds["mach"].to_numpy()
-    return float(speed @ speed / (mach @ speed))
-
-
-def fit_drag_area_m2(site: str = "barbados", **kwargs) -> float:
-    """Cd0 A (m^2), which the text does not give, by least squares of the printed Beta column of
-    ``site`` against eq 6.11 at the corrected elevation (Ch. 6 D: Barbados drag properties were
-    used for Yuma). ``kwargs`` go to :func:`launch_correction` (e.g. ``include_tangent``)."""
-    launch_site = get_site(site)
-    rounds = _rounds(site)
-    unit = launch_correction(rounds["muzzle_speed_m_s"].to_numpy(), launch_site.elevation_rad,
-                             launch_site.gun_bearing_rad, launch_site.latitude_rad,
-                             drag_area_m2=1.0, mass_kg=rounds["mass_kg"].to_numpy(),
-                             surface_density_kg_m3=launch_site.surface_density_kg_m3,
-                             **{"include_tangent": False, **kwargs}).beta
-    return float(unit @ rounds["beta"].to_numpy() / (unit @ unit))
-
-
-def appendix_columns(site: str, *, drag_area_m2: float | None = None,
-                     speed_of_sound_m_s: float | None = None,
-                     include_tangent: bool = False) -> pd.DataFrame:
-    """The derived columns of Appendix D ("barbados") or E ("yuma") recomputed from the round's
-    mass and printed Vo and the site's latitude, bearing, surface density and 85 deg elevation,
-    in the loaded (SI) column names of :mod:`.harp_data`, one row per distinct round, printed
-    order.
-
-    Unknowns: ``drag_area_m2`` (Cd0 A, default :func:`fit_drag_area_m2` of Barbados) and
-    ``speed_of_sound_m_s`` (default :func:`fit_speed_of_sound_m_s` of the site); k = 0.117 /km.
-    The printed corrected elevation, velocity and azimuth and Li are those of Vrel + omega x r0,
-    without V_tangent (``include_tangent=False``); Li is L0 (eq 6.13), not L_inf."""
-    launch_site = get_site(site)
-    rounds = _rounds(site)
-    drag_area = fit_drag_area_m2("barbados") if drag_area_m2 is None else drag_area_m2
-    sound = fit_speed_of_sound_m_s(site) if speed_of_sound_m_s is None else speed_of_sound_m_s
-    speed = rounds["muzzle_speed_m_s"].to_numpy()
-    launch = launch_correction(speed, launch_site.elevation_rad, launch_site.gun_bearing_rad,
-                               launch_site.latitude_rad, drag_area_m2=drag_area,
-                               mass_kg=rounds["mass_kg"].to_numpy(),
-                               surface_density_kg_m3=launch_site.surface_density_kg_m3,
-                               include_tangent=include_tangent)
-    return pd.DataFrame({
-        "round_number": rounds["round_number"],
-        "mach": speed / sound,
-        "misalignment_angle_rad": launch.misalignment_rad,
-        "tangent_speed_m_s": launch.tangent_speed_m_s,
-        "corrected_elevation_rad": launch.elevation_rad,
-        "corrected_speed_m_s": launch.speed_m_s,
-        "corrected_azimuth_rad": launch.azimuth_rad,
-        "beta": launch.beta,
-        "initial_angular_momentum_m2_s": launch.initial_angular_momentum_m2_s,
-    })
 
 
 def site_surface_speed_km_s(site: str) -> float:

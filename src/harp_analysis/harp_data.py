@@ -16,10 +16,17 @@ import pandas as pd
 from .paths import HARP_DATA_DIR
 from .sites import get_site
 
-__all__ = ["HarpDataError", "load_appendix", "load_barbados", "load_yuma", "verify_checksums"]
+__all__ = ["HarpDataError", "load_appendix", "load_barbados", "load_yuma", "load_muzzle_speeds",
+           "verify_checksums", "MUZZLE_SPEEDS_FILE"]
+
+#: Derived data beside the transcription: each round's exact muzzle speed (data/harp/README.md).
+MUZZLE_SPEEDS_FILE = "muzzle_speeds.tsv"
+_SPEED_COLUMNS = ("site", "round", "vo_ft_s")
 
 _KM = 1e3
 _DEG = math.pi / 180
+#: The international foot; the HARP records give muzzle speeds in ft/s.
+FOOT_M = 0.3048
 
 
 class HarpDataError(ValueError):
@@ -138,6 +145,39 @@ def load_barbados() -> pd.DataFrame:
 def load_yuma() -> pd.DataFrame:
     """Appendix E, Yuma; see :func:`load_appendix`."""
     return load_appendix("yuma")
+
+
+def load_muzzle_speeds(site: str, path: str | Path | None = None) -> pd.DataFrame:
+    """The exact muzzle speeds of ``site``'s rounds recovered from the appendix's columns
+    (derived data, ``data/harp/muzzle_speeds.tsv``; method in :func:`harp.recover_muzzle_speeds`):
+    ``round_number``, ``speed_ft_s`` and ``muzzle_speed_m_s`` (x 0.3048), one row per round."""
+    launch_site = get_site(site)
+    path = Path(path) if path is not None else HARP_DATA_DIR / MUZZLE_SPEEDS_FILE
+    rows, numbers = [], []
+    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
+        if line.startswith("#"):
+            continue
+        fields = line.split("\t")
+        where = f"{path} line {number}"
+        if len(fields) != len(_SPEED_COLUMNS):
+            raise HarpDataError(f"{where}: expected {len(_SPEED_COLUMNS)} fields, got {len(fields)}")
+        if not numbers and not rows:
+            if tuple(fields) != _SPEED_COLUMNS:
+                raise HarpDataError(f"{where}: header {fields} does not match {list(_SPEED_COLUMNS)}")
+            numbers.append(number)
+            continue
+        try:
+            rows.append((fields[0], int(fields[1]), float(fields[2])))
+        except ValueError:
+            raise HarpDataError(f"{where}: could not parse {fields!r}") from None
+        if not math.isfinite(rows[-1][2]) or rows[-1][2] <= 0:
+            raise HarpDataError(f"{where}, column 'vo_ft_s': {fields[2]!r} is not a positive speed")
+    frame = pd.DataFrame(rows, columns=["site", "round_number", "speed_ft_s"])
+    frame = frame[frame.site == launch_site.name.lower()].drop(columns="site")
+    if frame.round_number.duplicated().any():
+        raise HarpDataError(f"{path}: a {launch_site.name} round is listed twice")
+    frame["muzzle_speed_m_s"] = frame.speed_ft_s * FOOT_M
+    return frame.reset_index(drop=True)
 
 
 def verify_checksums(directory: str | Path = HARP_DATA_DIR) -> list[str]:

@@ -20,15 +20,12 @@ the splash range the text compares with is a triangulated distance on the sea. A
 horizontal range slant x cos(elevation) in its tangent plane, (R + h) sin(theta_E), differs from
 the arc R theta_E by about h theta_E: under 0.5 km at apogee, zero at the splash.
 
-Round 181 (:func:`splash_range_km`): the Earth-fixed ground range at the MKS impact is 36.5 km
-(36.4 km down the 109 deg line, 2.2 km to its right) after 319 s of flight, against the text's
-MKS 39.6 km and the observed splash 41.1 km. The Earth's rotation dominates: the inertial arc
-R theta is 178.6 km, of which the site's own eastward travel omega R cos(lat) t (144 km) is most.
-The model matters too: the appendices' variant (no V_tangent, eq 6.14 as printed) gives 18.8 km
-(16.6 down, 8.9 right), because its decay of the inertial angular momentum, co-rotation
-included, removes most of the 157 m/s horizontal speed the gun gives relative to the ground.
-39.6 km itself is not reproduced by any definition tried; the non-rotating MKS (1.80 km/s,
-85 deg, beta of eq 6.11 at 85 deg) lands at 41.2 km.
+Round 181 (:func:`splash_range_km`): the Earth-fixed ground range at the MKS impact. The Earth's
+rotation dominates it: the inertial arc R theta is several times the ground range, most of it
+the site's own eastward travel omega R cos(lat) t during the ~320 s flight, so the range depends
+strongly on how much horizontal speed the model's decay takes from the inertial angular
+momentum. The ledger row ``ch6.round181.range`` gives each model's range against the text's
+MKS 39.6 km and the observed splash 41.1 km (:data:`TEXT_SPLASH_RANGES_KM`).
 
 Radar tracks are not in the dissertation (it cites the HARP reports [11, 12]). Their file schema
 is in ``data/harp/radar/README.md``; :func:`load_radar_track` returns None when a round has no
@@ -44,7 +41,7 @@ import numpy as np
 import pandas as pd
 
 from . import earth, eci, harp
-from .harp_data import HarpDataError, load_appendix
+from .harp_data import HarpDataError
 from .paths import HARP_DATA_DIR
 from .plotting import new_figure
 from .sites import get_site
@@ -52,20 +49,22 @@ from .threedof import launch_frame
 from .trajectory import surface_ranges
 from .validation import check_range, finite_scalar
 
-__all__ = ["RADAR_DIR", "RADAR_NAMES", "round_trajectory", "splash_range_km",
+__all__ = ["RADAR_DIR", "RADAR_NAMES", "TEXT_SPLASH_RANGES_KM", "round_trajectory", "splash_range_km",
            "load_radar_track", "draw_round_figure"]
 
 RADAR_DIR = HARP_DATA_DIR / "radar"
 #: Ch. 6 B: the MPS-19 at the gun, the M-33 (assumed on Trinidad).
 RADAR_NAMES = ("MPS-19", "M-33")
 _RADAR_HEADER = ("time_s", "altitude_km", "range_km", "radar")
+#: Ch. 6 E on round 181: the ECI MKS range the text computed and the triangulated splash (km).
+TEXT_SPLASH_RANGES_KM = {181: {"text's MKS": 39.6, "observed splash": 41.1}}
 _KM = 1e3
 
 
 def _round_row(site, round_number):
     launch_site = get_site(site)
     number = int(finite_scalar(round_number, "round_number"))
-    table = load_appendix(launch_site.name)
+    table = harp.appendix_rounds(launch_site.name)
     rows = table[table.round_number == number]
     if rows.empty:
         raise ValueError(f"round {number} is not in the {launch_site.name} apogee table")
@@ -73,23 +72,21 @@ def _round_row(site, round_number):
 
 
 def round_trajectory(site: str, round_number: int, n_points: int = 400, *,
-                     include_tangent: bool = True, decay: str = "consistent") -> pd.DataFrame:
+                     model: str = "dissertation") -> pd.DataFrame:
     """The ECI MKS of ``round_number`` fired from ``site``, launch to impact at ``n_points``
     equal steps of angular range: ``time_s``, ``altitude_m``, ``inertial_range_m`` (R theta),
     and on the rotating Earth ``ground_range_m`` (surface arc from the gun), ``downrange_m`` and
     ``cross_range_m`` (along and right of the gun bearing) and ``radar_range_m`` (= the ground
-    range; module docstring). ``include_tangent`` and ``decay`` as in
-    :func:`harp.predicted_apogees`, whose defaults they share. ValueError for a round not in the
-    site's appendix."""
+    range; module docstring). ``model`` and its Cd0 A as in :func:`harp.predicted_apogees`,
+    whose default it shares; the round flies its recovered exact muzzle speed. ValueError for a
+    round not in the site's appendix."""
     n_points = int(check_range(finite_scalar(n_points, "n_points"), "n_points", low=2))
     launch_site, _, row = _round_row(site, round_number)
-    kwargs = dict(drag_area_m2=harp.martlet_drag_area_m2(), mass_kg=row.mass_kg,
-                  surface_density_kg_m3=launch_site.surface_density_kg_m3,
-                  include_tangent=include_tangent)
-    launch = (row.muzzle_speed_m_s, launch_site.elevation_rad, launch_site.gun_bearing_rad,
-              launch_site.latitude_rad)
-    solution = eci.eci_solution(*launch, decay=decay, warn=False, **kwargs)
-    correction = eci.launch_correction(*launch, **kwargs)
+    correction = eci.launch_correction(
+        row.muzzle_speed_m_s, launch_site.elevation_rad, launch_site.gun_bearing_rad,
+        launch_site.latitude_rad, drag_area_m2=harp.drag_area_m2(model), mass_kg=row.mass_kg,
+        surface_density_kg_m3=launch_site.surface_density_kg_m3, model=model)
+    solution = eci.solution_for(correction, warn=False)
     theta = np.linspace(0.0, solution.impact_angle, n_points)
     sample = solution.sample(theta)
     up, along_gun, _ = launch_frame(launch_site.latitude_rad, 0.0, launch_site.gun_bearing_rad)
@@ -107,10 +104,12 @@ def round_trajectory(site: str, round_number: int, n_points: int = 400, *,
                          "radar_range_m": ground})
 
 
-def splash_range_km(site: str = "barbados", round_number: int = 181) -> float:
-    """Ground range (km) on the rotating Earth at the MKS impact: 36.5 km for Barbados round
-    181, against the text's 39.6 km (MKS) and 41.1 km (observed splash); module docstring."""
-    return float(round_trajectory(site, round_number).ground_range_m.iloc[-1]) / _KM
+def splash_range_km(site: str = "barbados", round_number: int = 181,
+                    model: str = "dissertation") -> float:
+    """Ground range (km) on the rotating Earth at the MKS impact of ``round_number`` under
+    ``model``; for Barbados round 181 the text gives 39.6 km (MKS) and 41.1 km (observed
+    splash); module docstring."""
+    return float(round_trajectory(site, round_number, model=model).ground_range_m.iloc[-1]) / _KM
 
 
 # --- radar tracks --------------------------------------------------------------------------------
@@ -179,7 +178,7 @@ def load_radar_track(site: str, round_number: int) -> pd.DataFrame | None:
 def draw_round_figure(site: str, round_number: int):
     """Figs 6.7-6.11: altitude against time and against radar range, the ECI MKS curve and the
     radar points if ``data/harp/radar`` has them, else a note saying they are missing."""
-    launch_site, number, _ = _round_row(site, round_number)
+    launch_site, number, row = _round_row(site, round_number)
     trajectory = round_trajectory(site, number)
     radar = load_radar_track(site, number)
     fig, (by_time, by_range) = new_figure(1, 2, figsize=(10.0, 4.4))
@@ -196,6 +195,13 @@ def draw_round_figure(site: str, round_number: int):
             by_time.plot(points.time_s, points.altitude_m / _KM, "o", ms=3, label=f"{name} radar")
             by_range.plot(points.range_m / _KM, points.altitude_m / _KM, "o", ms=3,
                           label=f"{name} radar")
+    for axes in (by_time, by_range):
+        axes.axhline(row.apogee_m / _KM, color="0.3", ls=":", lw=1.2,
+                     label=f"measured apogee {row.apogee_m / _KM:.0f} km")
+    if launch_site.name == "Barbados":
+        for (label, range_km), marker in zip(TEXT_SPLASH_RANGES_KM.get(number, {}).items(), "v^"):
+            by_range.plot(range_km, 0.0, marker, color="k", ms=8, clip_on=False,
+                          label=f"{label} {range_km:.1f} km")
     by_time.set(xlabel="time (s)", ylabel="altitude (km)")
     by_range.set(xlabel="range from the gun (km)", ylabel="altitude (km)")
     for axes in (by_time, by_range):

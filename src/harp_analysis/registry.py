@@ -6,7 +6,8 @@ loudly, naming the entry):
 
 - ``class``: how the figure can be reproduced at all (``data``, ``schematic``, ``partial``,
   ``not reproducible``), as inventoried in ``shared/FIGURES.md``;
-- ``status``: where the project stands (``reproduced``, ``partial``, ``pending``,
+- ``status``: where the project stands (``reproduced``, ``deviates`` (drawn, but a ledger row
+  tied to it does not reproduce), ``partial``, ``pending``,
   ``not reproducible``); every status but ``reproduced`` needs a ``reason``.
 """
 
@@ -23,7 +24,7 @@ __all__ = ["RegistryEntry", "load_registry", "load_toml_rows", "get_entry", "fig
            "CLASSES", "STATUSES", "INDEX_FILES"]
 
 CLASSES = ("data", "schematic", "partial", "not reproducible")
-STATUSES = ("reproduced", "partial", "pending", "not reproducible")
+STATUSES = ("reproduced", "deviates", "partial", "pending", "not reproducible")
 #: Files in figures/ that are indexes, not figures.
 INDEX_FILES = ("README.md", "CLAIMS.md")
 _FIELDS = ("number", "kind", "title", "class", "notebook", "file", "status", "reason")
@@ -56,7 +57,8 @@ def _entry(raw: dict, position: int, source: Path) -> RegistryEntry:
         raise ValueError(f"{where}: status {raw['status']!r} is not one of {STATUSES}")
     if raw["status"] != "reproduced" and not raw["reason"].strip():
         raise ValueError(f"{where}: status {raw['status']!r} needs a reason")
-    if raw["status"] in ("reproduced", "partial") and not (raw["notebook"] and raw["file"]):
+    drawn = ("reproduced", "deviates", "partial")
+    if raw["status"] in drawn and not (raw["notebook"] and raw["file"]):
         raise ValueError(f"{where}: a {raw['status']} entry needs its notebook and file")
     return RegistryEntry(raw["number"], raw["kind"], raw["title"], raw["class"],
                          raw["notebook"], raw["file"], raw["status"], raw["reason"])
@@ -121,7 +123,7 @@ def render_gallery(target: Path | None = None) -> Path:
                      f"| {e.reason} |")
     lines.append("")
     for e in entries:
-        if e.status in ("reproduced", "partial"):
+        if e.status in ("reproduced", "deviates", "partial"):
             shown = f"![{e.label}]({e.file})" if e.file.endswith(".png") else f"[{e.file}]({e.file})"
             lines += [f"## {e.label}: {e.title}", "", f"Status: {e.status}. Drawn by "
                       f"`notebooks/{e.notebook}`.", "", shown, ""]

@@ -1,45 +1,62 @@
-"""Acceptance: the ECI Modified Kepler Solution predicts the HARP apogees as Chapter 6 states.
+"""Acceptance: the HARP apogee statistics of Chapter 6, per model, against the text's numbers.
 
-Bounds: Barbados (Fig 6.5) mean residual within 0.4 km and standard deviation 2.25 +- 0.1 km;
-Yuma (Fig 6.6) standard deviation 2.65 +- 0.1 km with the Barbados drag unchanged, and its mean
-within 1.5 km (the text's 0.44 km does not reproduce: see the ledger row ch6.yuma.mean).
+Thresholds are the text's (Ch. 6 C: Barbados within 0.4 km of the centre, standard deviation
+2.25 km; Ch. 6 D: Yuma 0.44 km from the centre, 2.65 km). Tolerances come from how the text
+prints them: "0.4" to one decimal (a bound, +0.05 km); the two-decimal statistics are Appendix
+E's own truncated (its errors average 0.447 km, standard deviation 2.657 km), so a value
+reproduces in [text - 0.005, text + 0.01) km. The statistics a model does not reproduce are
+strict xfails naming their ledger row, where the reason is argued.
 """
 
 import pytest
 
 from harp_analysis import harp
 
-BOUNDS = {  # site: (largest |mean| km, standard deviation km, its tolerance km)
-    "barbados": (0.4, 2.25, 0.1),
-    "yuma": (1.5, 2.65, 0.1),
+TEXT = {  # (site, statistic): (lowest, highest accepted value, km)
+    ("barbados", "abs_mean"): (0.0, 0.45),
+    ("barbados", "std"): (2.245, 2.26),
+    ("yuma", "mean"): (0.435, 0.45),
+    ("yuma", "std"): (2.645, 2.66),
 }
+#: (model, site, statistic) that do not reproduce: the ledger row that says why.
+DEVIATIONS = {
+    ("dissertation", "barbados", "abs_mean"): "ch6.barbados.mean",
+    ("dissertation", "barbados", "std"): "ch6.barbados.std",
+    ("consistent", "barbados", "std"): "ch6.barbados.std.consistent",
+    ("consistent", "yuma", "mean"): "ch6.yuma.mean.consistent",
+    ("consistent", "yuma", "std"): "ch6.yuma.std.consistent",
+    ("printed_columns", "barbados", "abs_mean"): "ch6.barbados.mean.printed_columns",
+    ("printed_columns", "barbados", "std"): "ch6.barbados.std.printed_columns",
+    ("printed_columns", "yuma", "mean"): "ch6.yuma.mean.printed_columns",
+}
+CASES = [pytest.param(model, site, statistic, marks=(
+    [pytest.mark.xfail(strict=True, reason=f"ledger row {DEVIATIONS[model, site, statistic]}")]
+    if (model, site, statistic) in DEVIATIONS else []))
+    for model in ("dissertation", "consistent", "printed_columns") for site, statistic in TEXT]
 
 
-@pytest.mark.parametrize("site", BOUNDS)
-def test_apogee_residual_statistics(site):
-    mean_bound, std, tolerance = BOUNDS[site]
-    mean = harp.residual_statistic(site, "mean")
-    spread = harp.residual_statistic(site, "std")
-    frame = harp.predicted_apogees(site)
-    worst = frame.loc[frame.residual_m.abs().idxmax()]
-    assert abs(mean) <= mean_bound, (
-        f"{site}: mean apogee residual {mean:.2f} km exceeds {mean_bound} km "
-        f"(worst round {worst.round_number}: measured {worst.measured_apogee_m / 1e3:.1f} km, "
-        f"predicted {worst.predicted_apogee_m / 1e3:.1f} km)")
-    assert spread == pytest.approx(std, abs=tolerance), (
-        f"{site}: residual standard deviation {spread:.2f} km, expected {std} +- {tolerance} km")
+@pytest.mark.parametrize("model, site, statistic", CASES)
+def test_residual_statistic_matches_the_text(model, site, statistic):
+    low, high = TEXT[site, statistic]
+    value = harp.residual_statistic(site, statistic, model=model)
+    assert low <= value < high, f"{model} {site} {statistic}: {value:.3f} km, text [{low}, {high})"
 
 
-def test_every_round_is_predicted_and_signed_as_appendix_e():
-    yuma = harp.predicted_apogees("yuma")
-    assert len(yuma) == 22 and len(harp.predicted_apogees("barbados")) == 23
-    # Appendix E's error is measured - predicted: ours has the same sign on most rounds.
-    agree = (yuma.residual_m > 0) == (yuma.printed_error_m > 0)
-    assert agree.mean() > 0.7
+def test_dissertation_model_reproduces_every_printed_yuma_error():
+    """Issue threshold 0.02 km per round; print rounding alone allows 0.005 km."""
+    frame = harp.predicted_apogees("yuma", "dissertation")
+    assert len(frame) == 22
+    assert (frame.residual_m - frame.printed_error_m).abs().max() < 20.0
 
 
-def test_unknown_site_is_named():
+def test_every_printed_row_is_predicted():
+    assert len(harp.predicted_apogees("barbados")) == 23
+
+
+def test_unknown_names_are_named():
     with pytest.raises(ValueError, match="site"):
         harp.predicted_apogees("woomera")
     with pytest.raises(ValueError, match="statistic"):
         harp.residual_statistic("yuma", "median")
+    with pytest.raises(ValueError, match="model"):
+        harp.predicted_apogees("yuma", "newtonian")
