@@ -1,35 +1,54 @@
-"""Where things live in the repository, resolved once so code works from any working directory.
+"""Where things live, resolved once so code works from any working directory.
 
 nbmake runs every notebook from its own folder and users start JupyterLab anywhere, so no
-module may rely on the current directory. The repository root is found from this file's
-location (the package is installed in editable mode from ``src/``); set the environment
-variable ``HARP_ANALYSIS_ROOT`` to point elsewhere, for example at a checkout when the
-package was installed without ``-e``.
+module may rely on the current directory.
+
+- ``HARP_DATA_DIR``: the HARP tables, which ship inside the package
+  (``harp_analysis/_data/harp``, a link to the repository's ``data/harp`` in a checkout and a
+  copy in an installed wheel), found through :mod:`importlib.resources`. They load wherever the
+  package is installed.
+- ``ROOT`` and the folders under it (``FIGURES_DIR``, ``NOTEBOOKS_DIR``, ``REGISTRY_DIR``,
+  ``DATA_DIR``): the repository checkout, found from this file's location (an editable install
+  from ``src/``) or the environment variable ``HARP_ANALYSIS_ROOT``. Only the figure registry,
+  the ledger and ``make figures`` need them; asking for one without a checkout raises a
+  RuntimeError that says how to point at one. ``HARP_ANALYSIS_FIGURES_DIR`` sends the figures
+  elsewhere.
 """
 
 from __future__ import annotations
 
 import os
+from importlib import resources
 from pathlib import Path
 
 __all__ = ["ROOT", "DATA_DIR", "HARP_DATA_DIR", "FIGURES_DIR", "NOTEBOOKS_DIR", "REGISTRY_DIR"]
 
+HARP_DATA_DIR = Path(str(resources.files("harp_analysis") / "_data" / "harp"))
 
-def _find_root() -> Path:
+
+def _find_root() -> Path | None:
     override = os.environ.get("HARP_ANALYSIS_ROOT")
     root = Path(override).resolve() if override else Path(__file__).resolve().parents[2]
-    if not (root / "data" / "harp").is_dir():
+    return root if (root / "registry").is_dir() and (root / "data" / "harp").is_dir() else None
+
+
+_ROOT = _find_root()
+_IN_CHECKOUT = {
+    "ROOT": lambda root: root,
+    "DATA_DIR": lambda root: root / "data",
+    "FIGURES_DIR": lambda root: Path(os.environ.get("HARP_ANALYSIS_FIGURES_DIR",
+                                                    root / "figures")).resolve(),
+    "NOTEBOOKS_DIR": lambda root: root / "notebooks",
+    "REGISTRY_DIR": lambda root: root / "registry",
+}
+
+
+def __getattr__(name: str) -> Path:
+    if name not in _IN_CHECKOUT:
+        raise AttributeError(f"module 'harp_analysis.paths' has no attribute {name!r}")
+    if _ROOT is None:
         raise RuntimeError(
-            f"harp_analysis cannot find its repository at {root} (no data/harp folder there). "
-            "Install the package with `pip install -e .` from a checkout, or set "
-            "HARP_ANALYSIS_ROOT to the checkout's path."
-        )
-    return root
-
-
-ROOT = _find_root()
-DATA_DIR = ROOT / "data"
-HARP_DATA_DIR = DATA_DIR / "harp"
-FIGURES_DIR = Path(os.environ.get("HARP_ANALYSIS_FIGURES_DIR", ROOT / "figures")).resolve()
-NOTEBOOKS_DIR = ROOT / "notebooks"
-REGISTRY_DIR = ROOT / "registry"
+            f"harp_analysis.paths.{name} needs the repository checkout (registry, figures, "
+            "notebooks), and none was found beside the installed package. Install with "
+            "`pip install -e .` from a checkout, or set HARP_ANALYSIS_ROOT to its path.")
+    return _IN_CHECKOUT[name](_ROOT)
