@@ -6,8 +6,6 @@
 Run: `make benchmark`.
 """
 
-import time
-
 import numpy as np
 
 from harp_analysis import effort, mks, projectiles, threedof
@@ -20,22 +18,35 @@ def main():
     solution = mks.for_projectile(baseline, 45.0)
     beta, tau = solution.beta.item(), solution.tau.item()
     cd0 = float(baseline.drag_law(2157.0 / 340.137))
-    many = lambda: mks.ModifiedKeplerSolution(2157.0, elevations, beta, tau,
-                                              warn=False).apogee_altitude("eq_6_4")
-    straight = lambda: effort.mks_apogee(2157.0, elevations, cd0, 11.6, 0.008)
+
+    def many():
+        return mks.ModifiedKeplerSolution(
+            2157.0, elevations, beta, tau, warn=False
+        ).apogee_altitude("eq_6_4")
+
+    def straight():
+        return effort.mks_apogee(2157.0, elevations, cd0, 11.6, 0.008)
+
     class_rate = n / effort.best_time(many, repeat=3)
     straight_rate = n / effort.best_time(straight, repeat=3)
-    print(f"MKS apogees per second, {n:,} launches at once: {class_rate:.3g} (class), "
-          f"{straight_rate:.3g} (straight-line eqs 6.4-6.10)")
+    print(
+        f"MKS apogees per second, {n:,} launches at once: {class_rate:.3g} (class), "
+        f"{straight_rate:.3g} (straight-line eqs 6.4-6.10)"
+    )
 
     def full_trajectory():
         return solution.sample(np.linspace(0.0, solution.impact_angle, 500))
+
     mks_full = effort.best_time(full_trajectory, number=20)
     three = effort.best_time(lambda: threedof.simulate_3dof(baseline, 45.0))
-    print(f"one trajectory: MKS (500 points with time of flight) {mks_full * 1e6:.0f} us, "
-          f"3DOF {three * 1e3:.1f} ms, ratio {three / mks_full:.0f}")
-    print(f"per apogee: 3DOF {three * 1e3:.1f} ms against MKS {1e9 / straight_rate:.1f} ns "
-          f"vectorised: {three * straight_rate:.2g} times faster")
+    print(
+        f"one trajectory: MKS (500 points with time of flight) {mks_full * 1e6:.0f} us, "
+        f"3DOF {three * 1e3:.1f} ms, ratio {three / mks_full:.0f}"
+    )
+    print(
+        f"per apogee: 3DOF {three * 1e3:.1f} ms against MKS {1e9 / straight_rate:.1f} ns "
+        f"vectorised: {three * straight_rate:.2g} times faster"
+    )
 
 
 if __name__ == "__main__":

@@ -29,23 +29,30 @@ def main():
     for rtol in (1e-8, 1e-9, 1e-10):
         seconds, flight = best_of(lambda: threedof.simulate_3dof(baseline, 45.0, rtol=rtol))
         error = abs(flight.attrs["apogee_altitude_m"] - reference["apogee_altitude_m"])
-        print(f"{rtol:>8.0e} {seconds * 1e3:>10.1f} {flight.attrs['steps']:>6} "
-              f"{flight.attrs['rhs_evaluations']:>6} {error:>17.3f}")
+        print(
+            f"{rtol:>8.0e} {seconds * 1e3:>10.1f} {flight.attrs['steps']:>6} "
+            f"{flight.attrs['rhs_evaluations']:>6} {error:>17.3f}"
+        )
 
     elevations = np.linspace(20.0, 85.0, 1000)
-    seconds, batch = best_of(lambda: threedof.simulate_3dof_batch(baseline, elevations,
-                                                                  rtol=1e-9), repeat=2)
+    seconds, batch = best_of(
+        lambda: threedof.simulate_3dof_batch(baseline, elevations, rtol=1e-9), repeat=2
+    )
     single, _ = best_of(lambda: threedof.simulate_3dof_batch(baseline, 45.0, rtol=1e-9))
-    print(f"\n3DOF batch of {elevations.size} launches (20-85 deg, rtol 1e-9): "
-          f"{seconds:.2f} s, {seconds / elevations.size * 1e3:.2f} ms per launch, "
-          f"{single / (seconds / elevations.size):.0f}x faster per launch than one at a time; "
-          f"steps per launch {batch.steps.min()}-{batch.steps.max()}")
+    print(
+        f"\n3DOF batch of {elevations.size} launches (20-85 deg, rtol 1e-9): "
+        f"{seconds:.2f} s, {seconds / elevations.size * 1e3:.2f} ms per launch, "
+        f"{single / (seconds / elevations.size):.0f}x faster per launch than one at a time; "
+        f"steps per launch {batch.steps.min()}-{batch.steps.max()}"
+    )
 
     print("\n6DOF (no-roll frame, DOP853 rtol 1e-9), 50 deg, 2022 m/s, 5 m/s cross wind")
     for projectile in (projectiles.HP, projectiles.LP):
         seconds, flight = best_of(lambda: sixdof.simulate_6dof(projectile), repeat=2)
-        print(f"{projectile.name}: {seconds:.2f} s, {flight.attrs['n_steps']} steps, "
-              f"{flight.attrs['n_rhs']} RHS evaluations; {seconds / single:.0f}x one 3DOF")
+        print(
+            f"{projectile.name}: {seconds:.2f} s, {flight.attrs['n_steps']} steps, "
+            f"{flight.attrs['n_rhs']} RHS evaluations; {seconds / single:.0f}x one 3DOF"
+        )
 
 
 if __name__ == "__main__":

@@ -31,14 +31,25 @@ def test_launch_offset_against_an_accurate_solution(accurate):
 
 
 def test_converges_to_the_accurate_3dof_at_first_order(accurate):
-    errors = [abs(appendix_a.simulate_appendix_a(BASELINE, 45.0, dt).altitude_m.max()
-                  - accurate.attrs["apogee_altitude_m"]) for dt in (0.2, 0.1)]
+    errors = [
+        abs(
+            appendix_a.simulate_appendix_a(BASELINE, 45.0, dt).altitude_m.max()
+            - accurate.attrs["apogee_altitude_m"]
+        )
+        for dt in (0.2, 0.1)
+    ]
     assert errors[1] < 0.6 * errors[0]  # halving the step roughly halves the error
     assert errors[1] < 0.005 * accurate.attrs["apogee_altitude_m"]
 
 
-@pytest.mark.parametrize("kwargs, name", [({"dt_s": 0.0}, "dt_s"), ({"dt_s": np.nan}, "dt_s"),
-                                          ({"elevation_deg": 95.0}, "elevation_deg")])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"dt_s": 0.0}, "dt_s"),
+        ({"dt_s": np.nan}, "dt_s"),
+        ({"elevation_deg": 95.0}, "elevation_deg"),
+    ],
+)
 def test_bad_input_is_named(kwargs, name):
     arguments = {"elevation_deg": 45.0, "dt_s": 0.1} | kwargs
     with pytest.raises(ValueError, match=name):

@@ -6,13 +6,17 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from harp_analysis import atmosphere as atm
 
-NASA_TABLE = pd.read_csv(Path(__file__).parent / "reference" / "us1976_density_table.csv",
-                         comment="#", dtype={"density_kg_m3": str})
+NASA_TABLE = pd.read_csv(
+    Path(__file__).parent / "reference" / "us1976_density_table.csv",
+    comment="#",
+    dtype={"density_kg_m3": str},
+)
 
 
 def _printed_half_unit(printed: str) -> float:
@@ -22,8 +26,11 @@ def _printed_half_unit(printed: str) -> float:
     return 0.5 * 10.0**-decimals / abs(float(mantissa))
 
 
-@pytest.mark.parametrize("row", list(NASA_TABLE[NASA_TABLE.altitude_m <= 90_000].itertuples()),
-                         ids=lambda row: f"{row.altitude_m / 1e3:g}km")
+@pytest.mark.parametrize(
+    "row",
+    list(NASA_TABLE[NASA_TABLE.altitude_m <= 90_000].itertuples()),
+    ids=lambda row: f"{row.altitude_m / 1e3:g}km",
+)
 def test_standard_density_matches_printed_nasa_table(row):
     # 1e-4 relative, or the printed rounding where four significant figures are coarser.
     tolerance = max(1e-4, _printed_half_unit(row.density_kg_m3))
@@ -45,8 +52,9 @@ def test_standard_density_agrees_with_second_implementation():
     altitude = np.arange(0.0, 81_000.0, 250.0)  # ambiance stops at 81.02 km
     reference = ambiance.Atmosphere(altitude)
     assert atm.standard_density(altitude) == pytest.approx(reference.density, rel=1e-5)
-    assert atm.standard_speed_of_sound(altitude) == pytest.approx(reference.speed_of_sound,
-                                                                  rel=1e-9)
+    assert atm.standard_speed_of_sound(altitude) == pytest.approx(
+        reference.speed_of_sound, rel=1e-9
+    )
 
 
 def test_standard_table_interpolation_is_exact_between_nodes():
@@ -63,15 +71,17 @@ def test_standard_table_interpolation_is_exact_between_nodes():
 def test_two_segment_model_is_eqs_2_1_and_2_2():
     assert atm.two_segment_density(0.0) == pytest.approx(1.22581)
     assert atm.two_segment_density(20_000.0) == pytest.approx(
-        0.37454745 * np.exp(-0.00015682 * (20_000.0 - 10_769.0)))
+        0.37454745 * np.exp(-0.00015682 * (20_000.0 - 10_769.0))
+    )
     # The two segments meet at 10.769 km: density within 0.05 %, speed of sound within 1 mm/s.
     below, above = atm.two_segment_density([10_769.0, 10_769.0 + 1e-6])
     assert above == pytest.approx(below, rel=5e-4)
     assert atm.two_segment_speed_of_sound(10_769.0) == pytest.approx(295.92987, abs=1e-3)
     # 14.939 m/s per sqrt(degree Rankine) is sqrt(gamma R) with R in Rankine: 1.4 * 287 / 1.8
     # gives 14.9406 (the code's constant corresponds to R = 1716 ft lbf/slug/R).
-    assert atm.two_segment_speed_of_sound(0.0) == pytest.approx(np.sqrt(1.4 * 287 / 1.8 * 518.4),
-                                                                rel=2e-4)
+    assert atm.two_segment_speed_of_sound(0.0) == pytest.approx(
+        np.sqrt(1.4 * 287 / 1.8 * 518.4), rel=2e-4
+    )
 
 
 def test_three_layer_model_is_appendix_a():
@@ -105,16 +115,19 @@ def test_exponential_fit_recovers_a_known_exponential(monkeypatch):
     """Feed the fitter an exactly exponential atmosphere: every definition returns its k."""
     k_true, rho0_true = 1.3e-4, 1.3
     monkeypatch.setattr(atm, "standard_density", lambda a: rho0_true * np.exp(-k_true * a))
-    for definition in (atm.FitDefinition(50e3, 1e3, "linear", True),
-                       atm.FitDefinition(50e3, 1e3, "log", True)):
+    for definition in (
+        atm.FitDefinition(50e3, 1e3, "linear", True),
+        atm.FitDefinition(50e3, 1e3, "log", True),
+    ):
         fit = atm.fit_exponential(definition)
         assert fit.decay_constant_per_m == pytest.approx(k_true, rel=1e-6)
         assert fit.surface_density_kg_m3 == pytest.approx(rho0_true, rel=1e-6)
         assert fit.r_squared == pytest.approx(1.0)
 
 
-@pytest.mark.parametrize("definition", [atm.LITERAL_FIT_DEFINITION,
-                                        atm.FitDefinition(50e3, 5e3, "log")])
+@pytest.mark.parametrize(
+    "definition", [atm.LITERAL_FIT_DEFINITION, atm.FitDefinition(50e3, 5e3, "log")]
+)
 def test_fitted_k_maximises_r_squared(definition):
     fit = atm.fit_exponential(definition)
     best = atm.model_r_squared(definition, fit.decay_constant_per_m)
@@ -126,15 +139,24 @@ def test_agreement_ceiling():
     assert atm.agreement_ceiling("us1976", 1e-9) == 150_000.0
     ceiling = atm.agreement_ceiling("two_segment", 0.10)
     assert 40e3 < ceiling < 50e3
-    error = atm.two_segment_density([ceiling, ceiling + 20.0]) / atm.standard_density(
-        [ceiling, ceiling + 20.0]) - 1
+    error = (
+        atm.two_segment_density([ceiling, ceiling + 20.0])
+        / atm.standard_density([ceiling, ceiling + 20.0])
+        - 1
+    )
     assert abs(error[0]) <= 0.10 < abs(error[1])
 
 
 # --- bad input ------------------------------------------------------------------------------
-DENSITIES = [atm.standard_density, atm.two_segment_density, atm.three_layer_density,
-             atm.exponential_density, atm.two_segment_speed_of_sound,
-             atm.three_layer_speed_of_sound, atm.standard_speed_of_sound]
+DENSITIES = [
+    atm.standard_density,
+    atm.two_segment_density,
+    atm.three_layer_density,
+    atm.exponential_density,
+    atm.two_segment_speed_of_sound,
+    atm.three_layer_speed_of_sound,
+    atm.standard_speed_of_sound,
+]
 
 
 @pytest.mark.parametrize("function", DENSITIES, ids=lambda f: f.__name__)
@@ -167,9 +189,14 @@ def test_above_the_standard_speed_of_sound_ceiling():
         atm.standard_speed_of_sound(90e3)
 
 
-@pytest.mark.parametrize("kwargs, name", [({"decay_constant_per_m": 0.0}, "decay_constant_per_m"),
-                                          ({"decay_constant_per_m": np.nan}, "decay_constant_per_m"),
-                                          ({"surface_density_kg_m3": -1.0}, "surface_density")])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"decay_constant_per_m": 0.0}, "decay_constant_per_m"),
+        ({"decay_constant_per_m": np.nan}, "decay_constant_per_m"),
+        ({"surface_density_kg_m3": -1.0}, "surface_density"),
+    ],
+)
 def test_exponential_parameters_are_checked(kwargs, name):
     with pytest.raises(ValueError, match=name):
         atm.exponential_density(0.0, **kwargs)

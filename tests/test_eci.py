@@ -21,9 +21,16 @@ def test_barbados_surface_speed_eq_6_16():
 
 
 def _launch(speed, elevation_deg, bearing_deg, latitude_deg, **kwargs):
-    return eci.launch_correction(speed, elevation_deg * DEG, bearing_deg * DEG,
-                                 latitude_deg * DEG, drag_area_m2=2.7e-3, mass_kg=84.0,
-                                 surface_density_kg_m3=1.225, **kwargs)
+    return eci.launch_correction(
+        speed,
+        elevation_deg * DEG,
+        bearing_deg * DEG,
+        latitude_deg * DEG,
+        drag_area_m2=2.7e-3,
+        mass_kg=84.0,
+        surface_density_kg_m3=1.225,
+        **kwargs,
+    )
 
 
 def test_due_east_at_the_equator_stays_in_the_vertical_plane():
@@ -31,10 +38,11 @@ def test_due_east_at_the_equator_stays_in_the_vertical_plane():
     for model in (eci.CONSISTENT, NO_TANGENT):
         launch = _launch(1800.0, elevation, 90.0, 0.0, model=model)
         assert launch.azimuth_rad == pytest.approx(90 * DEG, abs=1e-12)
-        assert np.all(launch.elevation_rad < elevation * DEG)   # V leans east, lower
+        assert np.all(launch.elevation_rad < elevation * DEG)  # V leans east, lower
     # Vrel, omega x r0 and V share the east-up plane: mu is the drop in elevation
-    assert launch.misalignment_rad == pytest.approx(elevation * DEG - launch.elevation_rad,
-                                                    abs=1e-12)
+    assert launch.misalignment_rad == pytest.approx(
+        elevation * DEG - launch.elevation_rad, abs=1e-12
+    )
 
 
 def test_due_north_at_the_equator_turns_east():
@@ -58,8 +66,9 @@ def test_tangent_velocity_lies_along_the_cross_track_drag():
     direction = eci.tangent_direction(launch.relative_m_s, corrected)
     assert np.linalg.norm(direction) == pytest.approx(1.0)
     assert direction @ corrected == pytest.approx(0.0, abs=1e-9)
-    assert np.linalg.det(np.stack([direction, corrected, launch.relative_m_s])) == \
-        pytest.approx(0.0, abs=1e-6)
+    assert np.linalg.det(np.stack([direction, corrected, launch.relative_m_s])) == pytest.approx(
+        0.0, abs=1e-6
+    )
     assert direction @ -launch.relative_m_s > 0
     # so adding it turns V further from Vrel: lower and more eastward for this shot
     with_tangent = _launch(1800.0, 85.0, 109.0, 13.0, model=eci.CONSISTENT)
@@ -82,10 +91,16 @@ def test_speed_ratio_eq_5_3_is_exact_with_the_inertial_east_component():
 def test_eci_solution_without_rotation_is_the_non_rotating_mks():
     reference = mks.for_projectile(BASELINE, 45.0)
     cd0 = BASELINE.drag_law(2157.0 / mks.get_atmosphere("two_segment").speed_of_sound(0.0))
-    solution = eci.eci_solution(2157.0, 45 * DEG, 1.0, 0.7,
-                                drag_area_m2=cd0 * BASELINE.reference_area_m2,
-                                mass_kg=BASELINE.mass_kg, surface_density_kg_m3=1.225,
-                                rotation_rate_rad_s=0.0)
+    solution = eci.eci_solution(
+        2157.0,
+        45 * DEG,
+        1.0,
+        0.7,
+        drag_area_m2=cd0 * BASELINE.reference_area_m2,
+        mass_kg=BASELINE.mass_kg,
+        surface_density_kg_m3=1.225,
+        rotation_rate_rad_s=0.0,
+    )
     for name in ("h_inf", "c1", "c2", "amplitudes", "beta", "tau"):
         assert getattr(solution, name) == pytest.approx(getattr(reference, name), rel=1e-9), name
     assert solution.apogee_altitude() == pytest.approx(reference.apogee_altitude(), rel=1e-9)
@@ -95,8 +110,16 @@ def test_eci_solution_without_rotation_is_the_non_rotating_mks():
 def test_eci_solution_scales(decay):
     model = replace(eci.CONSISTENT, name=decay, decay=decay)
     launch = _launch(1800.0, 85.0, 109.0, 13.0, model=model)
-    solution = eci.eci_solution(1800.0, 85 * DEG, 109 * DEG, 13 * DEG, drag_area_m2=2.7e-3,
-                                mass_kg=84.0, surface_density_kg_m3=1.225, model=model)
+    solution = eci.eci_solution(
+        1800.0,
+        85 * DEG,
+        109 * DEG,
+        13 * DEG,
+        drag_area_m2=2.7e-3,
+        mass_kg=84.0,
+        surface_density_kg_m3=1.225,
+        model=model,
+    )
     cos_mu = math.cos(launch.misalignment_rad)
     assert solution.drive_scale[0, 0] == pytest.approx(cos_mu * launch.speed_ratio_squared)
     expected = cos_mu * (launch.speed_ratio_squared if decay == "consistent" else 1.0)
@@ -111,23 +134,34 @@ def test_dissertation_model_takes_each_angle_where_it_says():
     gun = 85 * DEG
     assert launch.beta == pytest.approx(mks.decay_factor_beta(2.7e-3, 1.225, 1.0, 84.0, gun))
     assert launch.tau == pytest.approx(mks.decay_rate_tau(launch.corrected_elevation_rad))
-    assert launch.tangent_speed_m_s == pytest.approx(eci.tangent_speed(
-        2.7e-3, 1.225, 84.0, launch.misalignment_rad, 1800.0, launch.corrected_elevation_rad))
+    assert launch.tangent_speed_m_s == pytest.approx(
+        eci.tangent_speed(
+            2.7e-3, 1.225, 84.0, launch.misalignment_rad, 1800.0, launch.corrected_elevation_rad
+        )
+    )
     assert launch.speed_ratio_squared == pytest.approx(
-        eci.speed_ratio_squared_eq_5_3(launch.velocity_m_s, 13 * DEG), rel=1e-12)
+        eci.speed_ratio_squared_eq_5_3(launch.velocity_m_s, 13 * DEG), rel=1e-12
+    )
     assert launch.beta_column == pytest.approx(launch.beta * math.cos(launch.misalignment_rad))
 
 
-@pytest.mark.parametrize("call, name", [
-    (lambda: eci.get_model("newtonian"), "model"),
-    (lambda: replace(eci.CONSISTENT, decay="exact"), "decay"),
-    (lambda: eci.relative_velocity(1800.0, 1.4, 2 * math.pi, 0.2), "bearing_rad"),
-    (lambda: eci.relative_velocity(1800.0, 1.4, 1.0, 91 * DEG), "latitude_rad"),
-    (lambda: eci.surface_velocity(91 * DEG), "latitude_rad"),
-    (lambda: _launch(float("nan"), 85.0, 109.0, 13.0), "speed_m_s"),
-    (lambda: eci.launch_correction(1800.0, 1.4, 1.0, 0.2, drag_area_m2=-1.0, mass_kg=84.0,
-                                   surface_density_kg_m3=1.2), "drag_area_m2"),
-])
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda: eci.get_model("newtonian"), "model"),
+        (lambda: replace(eci.CONSISTENT, decay="exact"), "decay"),
+        (lambda: eci.relative_velocity(1800.0, 1.4, 2 * math.pi, 0.2), "bearing_rad"),
+        (lambda: eci.relative_velocity(1800.0, 1.4, 1.0, 91 * DEG), "latitude_rad"),
+        (lambda: eci.surface_velocity(91 * DEG), "latitude_rad"),
+        (lambda: _launch(float("nan"), 85.0, 109.0, 13.0), "speed_m_s"),
+        (
+            lambda: eci.launch_correction(
+                1800.0, 1.4, 1.0, 0.2, drag_area_m2=-1.0, mass_kg=84.0, surface_density_kg_m3=1.2
+            ),
+            "drag_area_m2",
+        ),
+    ],
+)
 def test_bad_input_is_named(call, name):
     with pytest.raises(ValueError, match=name):
         call()

@@ -14,7 +14,7 @@ from harp_analysis.projectiles import BASELINE, HP
 
 def _sample(x, y):
     """Two multiplies, two adds, a square (1), a sqrt (1) and an exp (10): 16."""
-    return np.exp(x * y + x * x) + np.sqrt(y ** 2)
+    return np.exp(x * y + x * x) + np.sqrt(y**2)
 
 
 def test_counting_rule():
@@ -28,10 +28,21 @@ def test_dop853_overhead_grows_with_states():
 @pytest.mark.parametrize("projectile, elevation", [(BASELINE, 45.0), (BASELINE, 85.0), (HP, 50.0)])
 def test_counted_mks_apogee_is_the_mks(projectile, elevation):
     solution = mks.for_projectile(projectile, elevation, warn=False)
-    cd0 = solution.beta.item() * 2 * 1.17e-4 * projectile.mass_kg * np.sin(
-        np.radians(elevation)) / (1.225 * projectile.reference_area_m2)
-    apogee = effort.mks_apogee(projectile.launch_speed_m_s, np.radians(elevation), cd0,
-                               projectile.mass_kg, projectile.reference_area_m2)
+    cd0 = (
+        solution.beta.item()
+        * 2
+        * 1.17e-4
+        * projectile.mass_kg
+        * np.sin(np.radians(elevation))
+        / (1.225 * projectile.reference_area_m2)
+    )
+    apogee = effort.mks_apogee(
+        projectile.launch_speed_m_s,
+        np.radians(elevation),
+        cd0,
+        projectile.mass_kg,
+        projectile.reference_area_m2,
+    )
     assert apogee == pytest.approx(solution.apogee_altitude("eq_6_4"), rel=1e-9)
 
 
@@ -62,8 +73,10 @@ def _branches(x):
 
 def _nested(x):
     """A nested function of 2 operations called twice (4), the square and the add: 6."""
+
     def twice(v):
         return 2 * v + 1
+
     return twice(x) + twice(x * x)
 
 
@@ -92,10 +105,12 @@ def test_complex_weight_multiplies_every_operation():
 
 
 def test_sixdof_coefficient_loop_has_nine_items():
-    model = sixdof.rigid_body_model(HP, atmosphere.get_atmosphere("two_segment"),
-                                    (0.0, 0.0, 0.0), "flat")
-    assert len(model.rows[0]) == len(model.slopes[0]) == 9 == next(
-        iter(effort._COEFFICIENTS.values()))
+    model = sixdof.rigid_body_model(
+        HP, atmosphere.get_atmosphere("two_segment"), (0.0, 0.0, 0.0), "flat"
+    )
+    assert (
+        len(model.rows[0]) == len(model.slopes[0]) == 9 == next(iter(effort._COEFFICIENTS.values()))
+    )
 
 
 _FLIGHT = dict(elevation_deg=50.0, crosswind_m_s=5.0, density_altitude="spherical")
@@ -106,8 +121,7 @@ def test_mlt_calls_per_segment():
     brentq evaluation and one for the apogee state (the radial-velocity checks reuse states)."""
     calls, table = effort._mlt_run(HP, **_FLIGHT)
     n = table.attrs["n_segments"]
-    count = {code.co_qualname: k for code, k in calls.items()
-             if code.co_filename == mlt.__file__}
+    count = {code.co_qualname: k for code, k in calls.items() if code.co_filename == mlt.__file__}
     assert count["segment_coefficients"] == 2 * n
     assert count["_solve_segment"] == count["_Segment.duration_s"] == n
     brentq_evaluations = count.get("simulate_mlt.<locals>.<lambda>", 0)
@@ -124,15 +138,21 @@ def test_mlt_counts_every_function_with_arithmetic():
     costed = {code.co_qualname for code in costs}
     package = Path(effort.__file__).parent
     for code, k in calls.items():
-        if (code in costs or k < table.attrs["n_segments"]
-                or Path(code.co_filename).parent != package):
+        if (
+            code in costs
+            or k < table.attrs["n_segments"]
+            or Path(code.co_filename).parent != package
+        ):
             continue
         if code.co_qualname.split(".<locals>.")[0] in costed - {code.co_qualname}:
             continue
         if code.co_name in effort._MLT_DIAGNOSTICS:
             continue
-        function = functools.reduce(getattr, code.co_qualname.split("."),
-                                    sys.modules[f"harp_analysis.{Path(code.co_filename).stem}"])
+        function = functools.reduce(
+            getattr,
+            code.co_qualname.split("."),
+            sys.modules[f"harp_analysis.{Path(code.co_filename).stem}"],
+        )
         assert effort.count_flops(function) == 0, code.co_qualname
 
 
@@ -147,4 +167,5 @@ def test_effort_table_rows():
     assert list(table.index[:4]) == ["6DOF", "3DOF", "MLT", "MKS (3 terms)"]
     assert table.flops["3DOF"] < table.flops["MLT"] < table.flops["6DOF"]
     assert effort.orders_of_magnitude("MLT") == pytest.approx(
-        np.log10(table.flops["MLT"] / table.flops["MKS (3 terms)"]))
+        np.log10(table.flops["MLT"] / table.flops["MKS (3 terms)"])
+    )

@@ -45,6 +45,7 @@ def test_atmosphere_notebook_regenerates_identical_figures(tmp_path):
     digests = []
     for run in ("first", "second"):
         build.execute_notebook(notebook, figures_dir=tmp_path / run)
-        digests.append({name: _digest(tmp_path / run / name)
-                        for name in ("fig_2_1.png", "fig_3_2.png")})
+        digests.append(
+            {name: _digest(tmp_path / run / name) for name in ("fig_2_1.png", "fig_3_2.png")}
+        )
     assert digests[0] == digests[1]

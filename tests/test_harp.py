@@ -17,9 +17,14 @@ REPRODUCED = {
     "yuma": {"mach", "corrected_speed_m_s", "beta"},
 }
 #: Within print rounding for all but a hair: the worst row's misfit in half-units.
-NEARLY = {("barbados", "misalignment_angle_rad"): 1.02, ("yuma", "misalignment_angle_rad"): 1.05,
-          ("yuma", "tangent_speed_m_s"): 1.15, ("yuma", "corrected_elevation_rad"): 1.3,
-          ("yuma", "apogee_error_m"): 1.4, ("yuma", "delta_apogee_m"): 1.4}
+NEARLY = {
+    ("barbados", "misalignment_angle_rad"): 1.02,
+    ("yuma", "misalignment_angle_rad"): 1.05,
+    ("yuma", "tangent_speed_m_s"): 1.15,
+    ("yuma", "corrected_elevation_rad"): 1.3,
+    ("yuma", "apogee_error_m"): 1.4,
+    ("yuma", "delta_apogee_m"): 1.4,
+}
 
 
 @pytest.mark.parametrize("site", SITES)
@@ -34,7 +39,9 @@ def test_stored_speeds_are_the_recovered_ones(site):
 def test_recovered_speeds_round_to_print_and_are_unique(site):
     recovered = harp.recover_muzzle_speeds(site)
     printed = load_appendix(site).drop_duplicates("round_number").reset_index(drop=True)
-    assert np.all(np.round(recovered.muzzle_speed_m_s / 10) == np.round(printed.muzzle_speed_m_s / 10))
+    assert np.all(
+        np.round(recovered.muzzle_speed_m_s / 10) == np.round(printed.muzzle_speed_m_s / 10)
+    )
     assert np.all(np.abs(recovered.muzzle_speed_m_s - printed.muzzle_speed_m_s) <= 5.0)
     assert np.all(recovered.speed_ft_s % harp.SPEED_STEP_FT_S == 0)
     # the kept speed reproduces mu (within 5 % of a half-unit beyond print rounding at worst),
@@ -92,8 +99,12 @@ def test_speed_of_sound_reproduces_every_printed_mach(site):
 
 def test_beta_column_interval_is_exact_at_its_ends():
     _, low, high = harp.beta_column_drag_area("barbados", "printed_columns")
-    for area, inside in ((low * (1 + 1e-9), True), (low * (1 - 1e-6), False),
-                         (high * (1 - 1e-9), True), (high * (1 + 1e-6), False)):
+    for area, inside in (
+        (low * (1 + 1e-9), True),
+        (low * (1 - 1e-6), False),
+        (high * (1 - 1e-9), True),
+        (high * (1 + 1e-6), False),
+    ):
         beta = harp.launch_corrections("barbados", "printed_columns", area).beta_column
         printed = harp.appendix_rounds("barbados").beta.to_numpy()
         assert bool(np.all(np.abs(beta - printed) <= 0.005 + 1e-12)) == inside
@@ -114,13 +125,16 @@ def test_residual_table_covers_every_model_site_and_row_set():
     assert table.std_km.between(1.5, 3.5).all() and table.mean_km.abs().lt(2.0).all()
 
 
-@pytest.mark.parametrize("text, message", [
-    ("site\tround\tvo_ft_s\nyuma\t4\n", "expected 3 fields"),
-    ("site\tround\tspeed\n", "header"),
-    ("site\tround\tvo_ft_s\nyuma\t4\tfast\n", "could not parse"),
-    ("site\tround\tvo_ft_s\nyuma\t4\t-5930\n", "positive"),
-    ("site\tround\tvo_ft_s\nyuma\t4\t5930\nyuma\t4\t5930\n", "twice"),
-])
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("site\tround\tvo_ft_s\nyuma\t4\n", "expected 3 fields"),
+        ("site\tround\tspeed\n", "header"),
+        ("site\tround\tvo_ft_s\nyuma\t4\tfast\n", "could not parse"),
+        ("site\tround\tvo_ft_s\nyuma\t4\t-5930\n", "positive"),
+        ("site\tround\tvo_ft_s\nyuma\t4\t5930\nyuma\t4\t5930\n", "twice"),
+    ],
+)
 def test_speed_file_errors_name_the_line(tmp_path, text, message):
     path = tmp_path / "speeds.tsv"
     path.write_text(text)

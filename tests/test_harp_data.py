@@ -32,8 +32,11 @@ def yuma():
 
 
 def test_checksums_verify():
-    assert verify_checksums() == ["appendix_d_barbados.tsv", "appendix_e_yuma.tsv",
-                                  "muzzle_speeds.tsv"]
+    assert verify_checksums() == [
+        "appendix_d_barbados.tsv",
+        "appendix_e_yuma.tsv",
+        "muzzle_speeds.tsv",
+    ]
 
 
 def test_checksum_mismatch_names_file(tmp_path):
@@ -113,11 +116,23 @@ BARBADOS_ROW_7 = "188\t119\t83.2356\t1.77\t5.15\t14.01\t0.08\t71.21\t1.86\t95.03
 @pytest.mark.parametrize(
     "line, text, pattern",
     [
-        (7, BARBADOS_ROW_7.replace("83.2356", "x83.2"), r"line 7, column 'mass_kg': could not parse 'x83.2'"),
+        (
+            7,
+            BARBADOS_ROW_7.replace("83.2356", "x83.2"),
+            r"line 7, column 'mass_kg': could not parse 'x83.2'",
+        ),
         (7, BARBADOS_ROW_7.rsplit("\t", 1)[0], r"line 7, column 'li_km2_s': missing field"),
         (7, BARBADOS_ROW_7 + "\t1", r"line 7, column 'li_km2_s': extra fields"),
-        (7, BARBADOS_ROW_7.replace("188", "188.0", 1), r"line 7, column 'round': could not parse '188.0'"),
-        (7, BARBADOS_ROW_7.replace("119", "nan"), r"line 7, column 'apogee_km': could not parse 'nan'"),
+        (
+            7,
+            BARBADOS_ROW_7.replace("188", "188.0", 1),
+            r"line 7, column 'round': could not parse '188.0'",
+        ),
+        (
+            7,
+            BARBADOS_ROW_7.replace("119", "nan"),
+            r"line 7, column 'apogee_km': could not parse 'nan'",
+        ),
         (7, BARBADOS_ROW_7.replace("0.18", ""), r"line 7, column 'beta': could not parse ''"),
         (5, "round\tapogee\tmass_kg", r"line 5: header"),
     ],
@@ -146,7 +161,9 @@ def test_unknown_site_raises_naming_site(bad):
         load_appendix(bad)
 
 
-@pytest.mark.parametrize("name, site", [("barbados", BARBADOS), ("BARBADOS", BARBADOS), ("Yuma", YUMA)])
+@pytest.mark.parametrize(
+    "name, site", [("barbados", BARBADOS), ("BARBADOS", BARBADOS), ("Yuma", YUMA)]
+)
 def test_get_site_is_case_insensitive(name, site):
     assert get_site(name) is site
 

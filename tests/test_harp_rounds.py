@@ -33,8 +33,11 @@ def radar_dir(tmp_path, monkeypatch):
 def test_starts_at_gun_and_peaks_at_eq_6_4_apogee(round_181):
     first = round_181.iloc[0]
     assert first.time_s == 0 and abs(first.altitude_m) < 1e-3
-    assert np.allclose(first[["ground_range_m", "downrange_m", "cross_range_m",
-                              "radar_range_m"]].to_numpy(float), 0, atol=1e-3)
+    assert np.allclose(
+        first[["ground_range_m", "downrange_m", "cross_range_m", "radar_range_m"]].to_numpy(float),
+        0,
+        atol=1e-3,
+    )
     apogees = harp.predicted_apogees("barbados").drop_duplicates("round_number")
     apogee_m = dict(zip(apogees.round_number, apogees.predicted_apogee_m))
     for number, frame in ((181, round_181), (206, harp_rounds.round_trajectory("barbados", 206))):
@@ -45,17 +48,29 @@ def test_starts_at_gun_and_peaks_at_eq_6_4_apogee(round_181):
 def test_earth_fixed_range_lags_inertial_by_site_motion(round_181):
     """R theta - ground range ~ omega R cos(lat) t along the inertial azimuth (within 5%)."""
     _, _, row = harp_rounds._round_row("barbados", 181)
-    azimuth = eci.launch_correction(row.muzzle_speed_m_s, BARBADOS.elevation_rad,
-                                    BARBADOS.gun_bearing_rad, BARBADOS.latitude_rad,
-                                    drag_area_m2=harp.drag_area_m2(), mass_kg=row.mass_kg,
-                                    surface_density_kg_m3=1.225, model="dissertation").azimuth_rad
+    azimuth = eci.launch_correction(
+        row.muzzle_speed_m_s,
+        BARBADOS.elevation_rad,
+        BARBADOS.gun_bearing_rad,
+        BARBADOS.latitude_rad,
+        drag_area_m2=harp.drag_area_m2(),
+        mass_kg=row.mass_kg,
+        surface_density_kg_m3=1.225,
+        model="dissertation",
+    ).azimuth_rad
     later = round_181.iloc[1:]
-    site_motion = (earth.ROTATION_RATE_RAD_S * earth.RADIUS_M * math.cos(BARBADOS.latitude_rad)
-                   * later.time_s * math.sin(azimuth))
+    site_motion = (
+        earth.ROTATION_RATE_RAD_S
+        * earth.RADIUS_M
+        * math.cos(BARBADOS.latitude_rad)
+        * later.time_s
+        * math.sin(azimuth)
+    )
     ratio = (later.inertial_range_m - later.ground_range_m) / site_motion
     assert ratio.between(0.95, 1.05).all()
-    assert np.allclose(np.hypot(later.downrange_m, later.cross_range_m), later.ground_range_m,
-                       rtol=1e-3)
+    assert np.allclose(
+        np.hypot(later.downrange_m, later.cross_range_m), later.ground_range_m, rtol=1e-3
+    )
     assert (round_181.radar_range_m == round_181.ground_range_m).all()
 
 
@@ -63,10 +78,18 @@ def test_splash_range_is_the_great_circle_to_the_moved_site():
     """Independently of the module: the MKS impact point in the inertial frame and the gun site
     carried round by the Earth during the flight are a great-circle distance apart."""
     _, _, row = harp_rounds._round_row("barbados", 181)
-    options = dict(drag_area_m2=harp.drag_area_m2(), mass_kg=row.mass_kg,
-                   surface_density_kg_m3=BARBADOS.surface_density_kg_m3, model="dissertation")
-    arguments = (row.muzzle_speed_m_s, BARBADOS.elevation_rad, BARBADOS.gun_bearing_rad,
-                 BARBADOS.latitude_rad)
+    options = dict(
+        drag_area_m2=harp.drag_area_m2(),
+        mass_kg=row.mass_kg,
+        surface_density_kg_m3=BARBADOS.surface_density_kg_m3,
+        model="dissertation",
+    )
+    arguments = (
+        row.muzzle_speed_m_s,
+        BARBADOS.elevation_rad,
+        BARBADOS.gun_bearing_rad,
+        BARBADOS.latitude_rad,
+    )
     launch = eci.launch_correction(*arguments, **options)
     solution = eci.eci_solution(*arguments, **options, warn=False)
     up = np.array([math.cos(BARBADOS.latitude_rad), 0.0, math.sin(BARBADOS.latitude_rad)])
@@ -114,14 +137,17 @@ def test_radar_track_loads_in_si_and_is_drawn(radar_dir):
     assert {"MPS-19 radar", "M-33 radar", "ECI Modified Kepler"} <= labels
 
 
-@pytest.mark.parametrize("text, where", [
-    (GOOD_TRACK.replace("33.0", "3x"), "line 4, column 'altitude_km'"),
-    (GOOD_TRACK.replace(",M-33", ",FPS-16"), "line 4, column 'radar'"),
-    (GOOD_TRACK.replace("10.0,17.5,0.6,", "10.0,17.5,"), "line 3, column 'radar'"),
-    (GOOD_TRACK.replace("0.6", "-0.6"), "line 3, column 'range_km'"),
-    (GOOD_TRACK.replace("range_km", "range_m"), "line 2: header"),
-    (GOOD_TRACK.replace("# source:", "# from:"), "source"),
-])
+@pytest.mark.parametrize(
+    "text, where",
+    [
+        (GOOD_TRACK.replace("33.0", "3x"), "line 4, column 'altitude_km'"),
+        (GOOD_TRACK.replace(",M-33", ",FPS-16"), "line 4, column 'radar'"),
+        (GOOD_TRACK.replace("10.0,17.5,0.6,", "10.0,17.5,"), "line 3, column 'radar'"),
+        (GOOD_TRACK.replace("0.6", "-0.6"), "line 3, column 'range_km'"),
+        (GOOD_TRACK.replace("range_km", "range_m"), "line 2: header"),
+        (GOOD_TRACK.replace("# source:", "# from:"), "source"),
+    ],
+)
 def test_malformed_radar_file_is_named(radar_dir, text, where):
     (radar_dir / "barbados_round_206.csv").write_text(text)
     with pytest.raises(HarpDataError, match="barbados_round_206.csv") as error:

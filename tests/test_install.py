@@ -36,25 +36,63 @@ print(len(names), "submodules")
 @pytest.mark.skipif(not (CHECKOUT / "pyproject.toml").is_file(), reason="needs the checkout")
 def test_wheel_installs_and_works_from_any_directory(tmp_path):
     wheels = tmp_path / "wheels"
-    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation",
-                    "--quiet", "--wheel-dir", str(wheels), str(CHECKOUT)], check=True,
-                   cwd=tmp_path, capture_output=True)
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "wheel",
+            "--no-deps",
+            "--no-build-isolation",
+            "--quiet",
+            "--wheel-dir",
+            str(wheels),
+            str(CHECKOUT),
+        ],
+        check=True,
+        cwd=tmp_path,
+        capture_output=True,
+    )
     fresh = tmp_path / "fresh"
     venv.create(fresh, with_pip=False)
     python = fresh / "bin" / "python"
-    purelib = Path(subprocess.run(
-        [python, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
-        check=True, capture_output=True, text=True).stdout.strip())
+    purelib = Path(
+        subprocess.run(
+            [python, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout.strip()
+    )
     # the dependencies come from this environment's site-packages, listed as a plain path so
     # its own .pth files (the editable install of the checkout) are not processed
     (purelib / "dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
-    subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "--no-index", "--quiet",
-                    "--target", str(purelib), *map(str, wheels.glob("*.whl"))], check=True,
-                   capture_output=True)
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "install",
+            "--no-deps",
+            "--no-index",
+            "--quiet",
+            "--target",
+            str(purelib),
+            *map(str, wheels.glob("*.whl")),
+        ],
+        check=True,
+        capture_output=True,
+    )
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
-    result = subprocess.run([python, "-c", SCRIPT], cwd=elsewhere, capture_output=True,
-                            text=True, env={"PATH": "/usr/bin:/bin", "MPLBACKEND": "Agg"})
+    result = subprocess.run(
+        [python, "-c", SCRIPT],
+        cwd=elsewhere,
+        capture_output=True,
+        text=True,
+        env={"PATH": "/usr/bin:/bin", "MPLBACKEND": "Agg"},
+    )
     assert result.returncode == 0, result.stderr[-3000:]
-    assert int(result.stdout.split()[0]) == len(list(
-        Path(harp_analysis.__file__).parent.glob("[!_]*.py")))
+    assert int(result.stdout.split()[0]) == len(
+        list(Path(harp_analysis.__file__).parent.glob("[!_]*.py"))
+    )

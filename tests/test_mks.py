@@ -37,8 +37,9 @@ def test_solves_the_linear_modified_kepler_equation():
     solution = mks.for_projectile(BASELINE, 45.0, n_terms=4)
     theta = np.linspace(0.0, solution.impact_angle, 200)
     beta, tau, c3 = solution.beta[0, 0], solution.tau[0, 0], solution.c3[0, 0]
-    forcing = c3 * sum((-2 * beta * np.exp(-tau * theta)) ** n / math.factorial(n)
-                       for n in range(4))
+    forcing = c3 * sum(
+        (-2 * beta * np.exp(-tau * theta)) ** n / math.factorial(n) for n in range(4)
+    )
     residual = solution.d2u_dtheta2(theta) + solution.u(theta) - forcing
     assert np.max(np.abs(residual)) < 1e-12 * c3
 
@@ -49,25 +50,30 @@ def test_agrees_with_direct_numerical_integration():
     beta, tau, c3 = solution.beta[0, 0], solution.tau[0, 0], solution.c3[0, 0]
 
     def rhs(theta, y):
-        forcing = c3 * sum((-2 * beta * np.exp(-tau * theta)) ** n / math.factorial(n)
-                           for n in range(3))
+        forcing = c3 * sum(
+            (-2 * beta * np.exp(-tau * theta)) ** n / math.factorial(n) for n in range(3)
+        )
         return [y[1], forcing - y[0]]
+
     theta = np.linspace(0, solution.impact_angle, 50)
     u0 = [1 / earth.RADIUS_M, -np.tan(np.radians(50.0)) / earth.RADIUS_M]
-    numeric = solve_ivp(rhs, (0, theta[-1]), u0, t_eval=theta, rtol=1e-12, atol=1e-20,
-                        method="DOP853")
+    numeric = solve_ivp(
+        rhs, (0, theta[-1]), u0, t_eval=theta, rtol=1e-12, atol=1e-20, method="DOP853"
+    )
     assert numeric.y[0] == pytest.approx(solution.u(theta), rel=1e-9)
 
 
 def test_series_converges_as_terms_are_added():
-    apogees = [mks.for_projectile(HP, 50.0, n_terms=n, warn=False).apogee_altitude()
-               for n in range(1, 10)]
+    apogees = [
+        mks.for_projectile(HP, 50.0, n_terms=n, warn=False).apogee_altitude() for n in range(1, 10)
+    ]
     steps = np.abs(np.diff(apogees))
-    assert np.all(steps[2:] < steps[1:-1])      # monotone once past the first terms
-    assert steps[-1] < 1e-3                     # metres are settled by nine terms
+    assert np.all(steps[2:] < steps[1:-1])  # monotone once past the first terms
+    assert steps[-1] < 1e-3  # metres are settled by nine terms
     # The infinite series sums to exp(-2 beta gamma): compare with a long series.
     assert apogees[-1] == pytest.approx(
-        mks.for_projectile(HP, 50.0, n_terms=20, warn=False).apogee_altitude(), abs=1e-4)
+        mks.for_projectile(HP, 50.0, n_terms=20, warn=False).apogee_altitude(), abs=1e-4
+    )
 
 
 def test_time_quadrature_converges():
@@ -80,8 +86,7 @@ def test_time_quadrature_converges():
 def test_apogee_methods_agree():
     """Eq 6.4 drops the driving terms, which have died out by apogee: same answer."""
     solution = mks.for_projectile(BASELINE, np.degrees(ELEVATIONS))
-    assert solution.apogee_altitude("eq_6_4") == pytest.approx(solution.apogee_altitude(),
-                                                               abs=1e-3)
+    assert solution.apogee_altitude("eq_6_4") == pytest.approx(solution.apogee_altitude(), abs=1e-3)
     assert np.abs(solution.du_dtheta(solution.apogee_angle[:, None])).max() < 1e-18
 
 
@@ -90,7 +95,7 @@ def test_speed_and_angular_momentum():
     theta = np.linspace(0, solution.impact_angle, 100)
     h = solution.angular_momentum(theta)
     assert h[0] == pytest.approx(2157.0 * earth.RADIUS_M * np.cos(np.radians(45)))
-    assert h[-1] == pytest.approx(solution.h_inf[0, 0], rel=1e-6)   # eq 3.23's asymptote
+    assert h[-1] == pytest.approx(solution.h_inf[0, 0], rel=1e-6)  # eq 3.23's asymptote
     assert np.all(np.diff(h) <= 0) and h[-1] < h[0]
     # Above the atmosphere the speed obeys the vis-viva law of the conic with h_inf.
     r, v = solution.radius(theta[50:]), solution.speed(theta[50:])
@@ -111,17 +116,24 @@ def test_validity_warnings():
         mks.for_projectile(HP, 50.0)
     with pytest.warns(ModelValidityWarning) as caught:  # slow and flat: both limits
         mks.for_projectile(BASELINE, 10.0, speed_m_s=800.0)
-    assert {"beta", "sensible atmosphere"} <= {word for w in caught for word in
-                                                ("beta", "sensible atmosphere")
-                                                if word in str(w.message)}
+    assert {"beta", "sensible atmosphere"} <= {
+        word for w in caught for word in ("beta", "sensible atmosphere") if word in str(w.message)
+    }
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         mks.for_projectile(BASELINE, 45.0)
 
 
-@pytest.mark.parametrize("kwargs, name", [
-    ({"speed_m_s": -1.0}, "speed_m_s"), ({"elevation_rad": 2.0}, "elevation_rad"),
-    ({"beta": np.nan}, "beta"), ({"tau": -1.0}, "tau"), ({"n_terms": 0}, "n_terms")])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"speed_m_s": -1.0}, "speed_m_s"),
+        ({"elevation_rad": 2.0}, "elevation_rad"),
+        ({"beta": np.nan}, "beta"),
+        ({"tau": -1.0}, "tau"),
+        ({"n_terms": 0}, "n_terms"),
+    ],
+)
 def test_bad_input_is_named(kwargs, name):
     arguments = dict(speed_m_s=2000.0, elevation_rad=0.8, beta=0.1, tau=500.0) | kwargs
     n_terms = arguments.pop("n_terms", 3)

@@ -51,8 +51,10 @@ def _position_error(flight, reference):
     return float(np.max(np.linalg.norm(pa - pb, axis=1)))
 
 
-@pytest.mark.parametrize("coefficients_at, order_range", [
-    ("middle", (1.6, 2.5)), ("average", (1.6, 2.5)), ("start", (0.8, 1.25))])
+@pytest.mark.parametrize(
+    "coefficients_at, order_range",
+    [("middle", (1.6, 2.5)), ("average", (1.6, 2.5)), ("start", (0.8, 1.25))],
+)
 def test_segments_converge_to_the_linear_theory_limit(limit, coefficients_at, order_range):
     """Freezing the coefficients at the segment's middle (or the mean of its ends) is the
     midpoint (trapezoid) rule: error O(L^2); at its start, the rectangle rule: O(L)."""
@@ -82,15 +84,19 @@ def _mccoy(projectile, altitude, speed, spin):
     mach = speed / float(AIR.speed_of_sound(altitude))
     cna, cmq, arm = (_raw(name, mach) for name in ("cna", "cmq", "sldel"))
     p_ = ix / iy * spin * d / speed
-    m_ = math.pi * rho * d**4 * cna * arm / (8 * iy)   # k_t^-2 C_Malpha*, C_Malpha D = CNA SLDEL
-    t_ = math.pi * rho * d**3 * cna / (8 * m)          # C_Nalpha*
-    c_ = math.pi * rho * d**5 * cmq / (16 * iy)        # k_t^-2 C_Mq*
+    m_ = math.pi * rho * d**4 * cna * arm / (8 * iy)  # k_t^-2 C_Malpha*, C_Malpha D = CNA SLDEL
+    t_ = math.pi * rho * d**3 * cna / (8 * m)  # C_Nalpha*
+    c_ = math.pi * rho * d**5 * cmq / (16 * iy)  # k_t^-2 C_Mq*
     return p_, m_, t_ - c_, t_, t_ * c_
 
 
 FLIGHT_STATES = [  # projectile, altitude (m), speed (m/s), roll rate (rad/s)
-    (LP, 100.0, 2000.0, 445.0), (LP, 5000.0, 1800.0, 250.0), (HP, 20000.0, 1500.0, 300.0),
-    (HP, 40000.0, 1000.0, 100.0), (LP, 60000.0, 900.0, 400.0)]
+    (LP, 100.0, 2000.0, 445.0),
+    (LP, 5000.0, 1800.0, 250.0),
+    (HP, 20000.0, 1500.0, 300.0),
+    (HP, 40000.0, 1000.0, 100.0),
+    (LP, 60000.0, 900.0, 400.0),
+]
 
 
 @pytest.mark.parametrize("projectile, altitude, speed, spin", FLIGHT_STATES)
@@ -115,8 +121,9 @@ def test_epicyclic_roots_are_mccoys(projectile, altitude, speed, spin):
     assert fast.real < 0 and slow.real < 0
 
     # Exact roots of lambda^2 + (H - iP) lambda - (M + A C + i P T) = 0.
-    exact = sorted(np.roots([1.0, h_ - 1j * p_, -(m_ + ac + 1j * p_ * t_)]),
-                   key=lambda z: -abs(z.imag))
+    exact = sorted(
+        np.roots([1.0, h_ - 1j * p_, -(m_ + ac + 1j * p_ * t_)]), key=lambda z: -abs(z.imag)
+    )
     for root, reference in zip((fast, slow), exact):
         assert abs(root - reference) <= 1e-10 * abs(reference)
 
@@ -139,8 +146,9 @@ def test_epicyclic_roots_are_mccoys(projectile, altitude, speed, spin):
 @pytest.mark.parametrize("length", [2000.0, 500.0])
 def test_vacuum_uniform_gravity_is_the_exact_parabola(length):
     """Without air and with constant gravity eqs L2-L7 are exact at any segment length."""
-    flight = mlt.simulate_mlt(LP, aerodynamics=False, gravity="uniform", crosswind_m_s=0.0,
-                              segment_length_m=length)
+    flight = mlt.simulate_mlt(
+        LP, aerodynamics=False, gravity="uniform", crosswind_m_s=0.0, segment_length_m=length
+    )
     t = flight.time_s.to_numpy()
     x = 2022.0 * math.cos(ELEVATION) * t
     z = -2022.0 * math.sin(ELEVATION) * t + G0 * t**2 / 2
@@ -162,8 +170,10 @@ def test_vacuum_central_gravity_converges_to_the_kepler_conic():
         attrs = mlt.simulate_mlt(LP, aerodynamics=False, segment_length_m=length).attrs
         apogee[length] = abs(attrs["apogee_altitude_m"] - conic.apogee_altitude_m)
         time_of_flight[length] = abs(attrs["time_of_flight_s"] - conic.time_of_flight_s)
-        print(f"\nvacuum, {length:.0f} m: apogee error {apogee[length]:.3e} m, "
-              f"time of flight error {time_of_flight[length]:.3e} s")
+        print(
+            f"\nvacuum, {length:.0f} m: apogee error {apogee[length]:.3e} m, "
+            f"time of flight error {time_of_flight[length]:.3e} s"
+        )
     for errors in (apogee, time_of_flight):
         assert errors[100.0] < errors[500.0] < errors[2000.0]
         assert errors[2000.0] / errors[500.0] > 10  # (2000 / 500)^2 = 16 at second order
@@ -179,8 +189,22 @@ def _air_state(model, theta, psi, lateral, w_ratio, rate, *, x=2e4, z=-8e3, u=17
     wx, wy, wz = model.wind
     v_w = -sp * wx + cp * wy
     w_w = st * cp * wx + st * sp * wy + ct * wz
-    return np.array([x, 0.0, z, 0.3, theta, psi, u, v_w + lateral, w_w + w_ratio * lateral, p,
-                     rate, w_ratio * rate])
+    return np.array(
+        [
+            x,
+            0.0,
+            z,
+            0.3,
+            theta,
+            psi,
+            u,
+            v_w + lateral,
+            w_w + w_ratio * lateral,
+            p,
+            rate,
+            w_ratio * rate,
+        ]
+    )
 
 
 def _dropped_products(model, state):
@@ -199,10 +223,12 @@ def _dropped_products(model, state):
     drag_factor = math.pi * rho * model.d**2 / (8 * model.mass)
     tan = math.tan(theta)
     dropped = np.zeros(12)
-    dropped[3] = r * tan                                       # phi' = p + r tan(theta)
-    dropped[6] = (drag_factor * (cx0 * speed * (speed - ua) + cx2 * lateral)  # one V frozen, CX2
-                  - (q * w - r * v))
-    dropped[7] = -r * (u - speed) - r * tan * w                # u = V; frame roll rate
+    dropped[3] = r * tan  # phi' = p + r tan(theta)
+    dropped[6] = (
+        drag_factor * (cx0 * speed * (speed - ua) + cx2 * lateral)  # one V frozen, CX2
+        - (q * w - r * v)
+    )
+    dropped[7] = -r * (u - speed) - r * tan * w  # u = V; frame roll rate
     dropped[8] = q * (u - speed) + r * tan * v
     dropped[10] = -tan * r**2
     dropped[11] = tan * q * r
@@ -235,9 +261,9 @@ def test_linear_theory_is_the_6dof_at_small_lateral_states(theta):
     linear = np.array(mlt.linear_theory_derivatives(model, state.tolist()))
     np.testing.assert_allclose(linear[6:9], full[6:9], rtol=1e-6)
     np.testing.assert_allclose(linear[10:], full[10:], rtol=1e-6)
-    assert linear[9] == pytest.approx(full[9], rel=1e-13)     # p': exact
+    assert linear[9] == pytest.approx(full[9], rel=1e-13)  # p': exact
     np.testing.assert_array_equal(linear[[0, 1, 2, 4, 5]], full[[0, 1, 2, 4, 5]])
-    assert linear[3] == pytest.approx(full[3], rel=1e-8)      # phi': r tan(theta) dropped
+    assert linear[3] == pytest.approx(full[3], rel=1e-8)  # phi': r tan(theta) dropped
 
 
 def test_closed_form_segment_has_the_linear_theory_derivative():
@@ -271,17 +297,21 @@ def test_closed_form_segment_has_the_linear_theory_derivative():
 
 
 # --- bad input and validity ------------------------------------------------------------------
-@pytest.mark.parametrize("kwargs, match", [
-    ({"segment_length_m": 0.0}, "segment_length_m"),
-    ({"segment_length_m": -5.0}, "segment_length_m"),
-    ({"segment_length_m": math.nan}, "segment_length_m"),
-    ({"segment_length_m": 1e6}, "longer than the flight"),
-    ({"segment_length_m": 1e7}, "longer than the flight"),
-    ({"coefficients_at": "end"}, "coefficients_at"),
-    ({"gravity": "flat"}, "gravity"),
-    ({"elevation_deg": 0.0}, "elevation_deg"), ({"elevation_deg": 90.0}, "elevation_deg"),
-    ({"elevation_deg": 95.0}, "elevation_deg"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        ({"segment_length_m": 0.0}, "segment_length_m"),
+        ({"segment_length_m": -5.0}, "segment_length_m"),
+        ({"segment_length_m": math.nan}, "segment_length_m"),
+        ({"segment_length_m": 1e6}, "longer than the flight"),
+        ({"segment_length_m": 1e7}, "longer than the flight"),
+        ({"coefficients_at": "end"}, "coefficients_at"),
+        ({"gravity": "flat"}, "gravity"),
+        ({"elevation_deg": 0.0}, "elevation_deg"),
+        ({"elevation_deg": 90.0}, "elevation_deg"),
+        ({"elevation_deg": 95.0}, "elevation_deg"),
+    ],
+)
 def test_bad_input_is_named(kwargs, match):
     with pytest.raises(ValueError, match=match):
         mlt.simulate_mlt(LP, **kwargs)
@@ -327,7 +357,8 @@ def test_flight_table_matches_the_6dof():
     assert attrs["n_segments"] - 1 < arc / 1000.0 * (1 + 1e-3) + 1e-9
     assert arc / 1000.0 * (1 - 1e-3) < attrs["n_segments"]
     assert flight.mach.iloc[0] == pytest.approx(
-        math.hypot(2022.0, 5.0) / float(AIR.speed_of_sound(0.0)))
+        math.hypot(2022.0, 5.0) / float(AIR.speed_of_sound(0.0))
+    )
 
 
 def test_segments_longer_than_the_updates_of_linear_theory_warn():

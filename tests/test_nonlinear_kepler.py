@@ -24,8 +24,7 @@ def hp50():
 @pytest.mark.parametrize("form", nk.FORMS)
 @pytest.mark.parametrize("elevation_deg", ELEVATIONS_DEG)
 def test_beta_zero_is_the_kepler_conic(form, elevation_deg):
-    launch = mks.ModifiedKeplerSolution(2157.0, math.radians(elevation_deg), 0.0, 500.0,
-                                        warn=False)
+    launch = mks.ModifiedKeplerSolution(2157.0, math.radians(elevation_deg), 0.0, 500.0, warn=False)
     conic = kepler.ballistic_conic(2157.0, math.radians(elevation_deg))
     numerical = nk.solve(launch, form)
     assert numerical.apogee_altitude() == pytest.approx(conic.apogee_altitude_m, rel=1e-9)
@@ -69,10 +68,19 @@ def _planar_flight(launch, transverse):
 
     def impact(t, s):
         return math.hypot(s[0], s[1]) - r0
+
     impact.terminal, impact.direction = True, -1.0
     start = (r0, 0.0, v0 * math.sin(phi0), v0 * math.cos(phi0))
-    result = solve_ivp(rhs, (0.0, 3000.0), start, method="DOP853", rtol=1e-12, atol=1e-6,
-                       events=impact, dense_output=True)
+    result = solve_ivp(
+        rhs,
+        (0.0, 3000.0),
+        start,
+        method="DOP853",
+        rtol=1e-12,
+        atol=1e-6,
+        events=impact,
+        dense_output=True,
+    )
     times = np.linspace(0.0, result.t[-1], 4001)
     x, y = result.sol(times)[:2]
     end = result.y_events[0][0]
@@ -100,8 +108,9 @@ def test_thin_atmosphere_limit():
     speed, phi0, beta = 2157.0, math.radians(50.0), 0.2
     launch = mks.ModifiedKeplerSolution(speed, phi0, beta, 1e5, warn=False)
     horizontal, vertical = speed * math.cos(phi0) * math.exp(-beta), speed * math.sin(phi0)
-    transverse = kepler.ballistic_conic(math.hypot(horizontal, vertical),
-                                        math.atan2(vertical, horizontal))
+    transverse = kepler.ballistic_conic(
+        math.hypot(horizontal, vertical), math.atan2(vertical, horizontal)
+    )
     straight = kepler.ballistic_conic(speed * math.exp(-beta), phi0)
     for form, conic in (("eq_3_25", transverse), ("eq_3_30", straight)):
         numerical = nk.solve(launch, form)
@@ -111,10 +120,11 @@ def test_thin_atmosphere_limit():
 
 def test_linearisation_error_is_first_order_in_beta():
     """Halving beta halves the eq 3.25 - eq 3.30 difference: not a second-order effect."""
+
     def error(beta):
-        launch = mks.ModifiedKeplerSolution(2157.0, math.radians(50.0), beta, 889.3,
-                                            warn=False)
+        launch = mks.ModifiedKeplerSolution(2157.0, math.radians(50.0), beta, 889.3, warn=False)
         return nk.linearisation_error(launch).apogee_m
+
     assert error(0.02) / error(0.01) == pytest.approx(2.0, rel=0.05)
 
 
@@ -135,12 +145,16 @@ def test_natural_frequency_starts_high_and_decays_to_one(hp50):
 
 def test_initial_natural_frequency_does_not_depend_on_k():
     """tau beta = r0 Cd0 rho0 A / (2 m cos phi0): k cancels."""
-    values = [nk.initial_natural_frequency(mks.for_projectile(HP, 50.0, warn=False,
-                                                              decay_constant_per_m=k))
-              for k in (0.117e-3, 0.14e-3)]
+    values = [
+        nk.initial_natural_frequency(
+            mks.for_projectile(HP, 50.0, warn=False, decay_constant_per_m=k)
+        )
+        for k in (0.117e-3, 0.14e-3)
+    ]
     assert values[0] == pytest.approx(values[1], rel=1e-12)
     # By hand from eqs 3.22, 3.27 and 3.29: Cd0 = -CX0 at launch, rho0 = 1.225, tan(50 deg).
     from harp_analysis.atmosphere import get_atmosphere
+
     phi = np.radians(50.0)
     cd0 = HP.drag_law(2022.0 / get_atmosphere("two_segment").speed_of_sound(0.0))
     tau_beta = earth.RADIUS_M * cd0 * 1.225 * HP.reference_area_m2 / (2 * HP.mass_kg * np.cos(phi))

@@ -2,7 +2,6 @@
 
 import json
 import re
-from pathlib import Path
 
 import pytest
 
@@ -14,8 +13,11 @@ DISSERTATION = paths.ROOT.parent / "shared" / "dissertation" / "000_5344a0ab06f4
 
 
 def test_every_figure_and_table_is_registered():
-    expected = {f"{chapter}.{n}" for chapter, count in
-                ((1, 3), (2, 10), (3, 4), (4, 18), (5, 11), (6, 11)) for n in range(1, count + 1)}
+    expected = {
+        f"{chapter}.{n}"
+        for chapter, count in ((1, 3), (2, 10), (3, 4), (4, 18), (5, 11), (6, 11))
+        for n in range(1, count + 1)
+    }
     expected.add("Table 4.1")
     assert {entry.number for entry in ENTRIES} == expected
 
@@ -26,19 +28,26 @@ def test_registry_titles_are_the_captions():
     for entry in ENTRIES:
         if entry.kind == "figure":
             first_words = " ".join(entry.title.split()[:4])
-            assert re.search(rf"^Figure {re.escape(entry.number)} {re.escape(first_words)}",
-                             text, re.M), entry.number
+            assert re.search(
+                rf"^Figure {re.escape(entry.number)} {re.escape(first_words)}", text, re.M
+            ), entry.number
 
 
-@pytest.mark.parametrize("entry", [e for e in ENTRIES if e.status in ("reproduced", "deviates", "partial")],
-                         ids=lambda e: e.number)
+@pytest.mark.parametrize(
+    "entry",
+    [e for e in ENTRIES if e.status in ("reproduced", "deviates", "partial")],
+    ids=lambda e: e.number,
+)
 def test_reproduced_figures_have_their_file_and_notebook(entry):
     assert (REPOSITORY_FIGURES / entry.file).is_file(), f"{entry.label}: no figures/{entry.file}"
     notebook = paths.NOTEBOOKS_DIR / entry.notebook
     assert notebook.is_file(), f"{entry.label}: no notebooks/{entry.notebook}"
     # The notebook names this figure (it saves it through save_figure or save_table).
-    code = "".join("".join(cell["source"]) for cell in json.loads(notebook.read_text())["cells"]
-                   if cell["cell_type"] == "code")
+    code = "".join(
+        "".join(cell["source"])
+        for cell in json.loads(notebook.read_text())["cells"]
+        if cell["cell_type"] == "code"
+    )
     assert f'"{entry.number}"' in code and ("save_figure" in code or "save_table" in code)
 
 
@@ -50,8 +59,10 @@ def test_every_file_in_figures_is_registered():
 
 def test_malformed_registry_entry_is_named(tmp_path):
     path = tmp_path / "figures.toml"
-    path.write_text('[[item]]\nnumber = "9.9"\nkind = "figure"\ntitle = "t"\nclass = "data"\n'
-                    'notebook = ""\nfile = ""\nstatus = "pending"\nreason = ""\n')
+    path.write_text(
+        '[[item]]\nnumber = "9.9"\nkind = "figure"\ntitle = "t"\nclass = "data"\n'
+        'notebook = ""\nfile = ""\nstatus = "pending"\nreason = ""\n'
+    )
     with pytest.raises(ValueError, match=r"entry 1 \(9.9\).*needs a reason"):
         registry.load_registry(path)
 
@@ -67,9 +78,11 @@ def test_gallery_lists_every_entry(tmp_path):
         assert f"| {entry.label} |" in text
 
 
-@pytest.mark.parametrize("notebook", sorted(paths.NOTEBOOKS_DIR.glob("*.ipynb")),
-                         ids=lambda p: p.name)
+@pytest.mark.parametrize(
+    "notebook", sorted(paths.NOTEBOOKS_DIR.glob("*.ipynb")), ids=lambda p: p.name
+)
 def test_notebooks_are_committed_without_outputs(notebook):
     cells = json.loads(notebook.read_text())["cells"]
-    assert not any(c.get("outputs") or c.get("execution_count") for c in cells
-                   if c["cell_type"] == "code")
+    assert not any(
+        c.get("outputs") or c.get("execution_count") for c in cells if c["cell_type"] == "code"
+    )

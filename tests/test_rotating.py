@@ -1,4 +1,5 @@
-"""Chapter 5's comparison: the ECI MKS tracks the rotating 3DOF, and the printed eq 6.14 does not."""
+"""Chapter 5's comparison: the ECI MKS tracks the rotating 3DOF, and the printed eq 6.14 does
+not."""
 
 import numpy as np
 import pytest
@@ -7,8 +8,12 @@ from harp_analysis import rotating
 
 
 def test_errors_at_apogee_stay_within_a_few_km():
-    errors = [rotating.error_at_apogee_km(lat, brg, el) for lat in rotating.LATITUDES_DEG
-              for brg in rotating.BEARINGS_DEG for el in rotating.ELEVATIONS_DEG]
+    errors = [
+        rotating.error_at_apogee_km(lat, brg, el)
+        for lat in rotating.LATITUDES_DEG
+        for brg in rotating.BEARINGS_DEG
+        for el in rotating.ELEVATIONS_DEG
+    ]
     assert max(errors) < 3.5 and np.median(errors) < 1.0
 
 

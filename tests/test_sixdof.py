@@ -46,30 +46,47 @@ def _expected_no_roll_derivative(body_state, body_derivative):
 
 
 _states = st.tuples(
-    st.floats(-1e3, 4e5), st.floats(-2e3, 2e3), st.floats(-1.5e5, 1.2e4),  # x y z
-    st.floats(-50.0, 50.0), st.floats(-1.4, 1.4), st.floats(-0.5, 0.5),     # phi theta psi
-    st.floats(150.0, 3500.0), st.floats(-300.0, 300.0), st.floats(-300.0, 300.0),  # u v w
-    st.floats(-600.0, 600.0), st.floats(-5.0, 5.0), st.floats(-5.0, 5.0),   # p q r
+    st.floats(-1e3, 4e5),
+    st.floats(-2e3, 2e3),
+    st.floats(-1.5e5, 1.2e4),  # x y z
+    st.floats(-50.0, 50.0),
+    st.floats(-1.4, 1.4),
+    st.floats(-0.5, 0.5),  # phi theta psi
+    st.floats(150.0, 3500.0),
+    st.floats(-300.0, 300.0),
+    st.floats(-300.0, 300.0),  # u v w
+    st.floats(-600.0, 600.0),
+    st.floats(-5.0, 5.0),
+    st.floats(-5.0, 5.0),  # p q r
 )
 
 
 @settings(max_examples=300, deadline=None)
-@given(state=_states, wind=st.tuples(*[st.floats(-30.0, 30.0)] * 3),
-       projectile=st.sampled_from([HP, LP]),
-       density_altitude=st.sampled_from(sixdof.DENSITY_ALTITUDES))
+@given(
+    state=_states,
+    wind=st.tuples(*[st.floats(-30.0, 30.0)] * 3),
+    projectile=st.sampled_from([HP, LP]),
+    density_altitude=st.sampled_from(sixdof.DENSITY_ALTITUDES),
+)
 def test_no_roll_derivative_is_appendix_b_turned_into_the_no_roll_frame(
-        state, wind, projectile, density_altitude):
+    state, wind, projectile, density_altitude
+):
     kwargs = dict(wind_m_s=wind, density_altitude=density_altitude)
     body = np.array(state)
     expected = _expected_no_roll_derivative(
-        body, sixdof.appendix_b_derivatives(body, projectile, **kwargs))
+        body, sixdof.appendix_b_derivatives(body, projectile, **kwargs)
+    )
     actual = sixdof.no_roll_derivatives(_body_to_no_roll(body), projectile, **kwargs)
     # Each group (position, angles, velocity, rates) to 1e-9 of its own size, or of the
     # rounding of its largest cross-product term (omega x V; omega x I omega, whose x component
     # q Iz r - r Iy q is zero only in exact arithmetic in the body frame).
     omega, speed = np.max(np.abs(body[9:])), np.max(np.abs(body[6:9]))
-    cross_terms = (0.0, 0.0, omega * speed,
-                   omega**2 * projectile.pitch_inertia_kg_m2 / projectile.roll_inertia_kg_m2)
+    cross_terms = (
+        0.0,
+        0.0,
+        omega * speed,
+        omega**2 * projectile.pitch_inertia_kg_m2 / projectile.roll_inertia_kg_m2,
+    )
     for group, cross in zip((slice(0, 3), slice(3, 6), slice(6, 9), slice(9, 12)), cross_terms):
         scale = max(np.max(np.abs(expected[group])), 1e-3 * cross)
         np.testing.assert_allclose(actual[group], expected[group], rtol=1e-9, atol=1e-9 * scale)
@@ -85,12 +102,14 @@ def test_appendix_b_derivative_at_launch_by_hand():
     cx0, cldd, clp = (np.interp(mach, M829.mach, getattr(M829, c)) for c in ("cx0", "cldd", "clp"))
     qa = 0.5 * rho * 2022.0**2 * math.pi / 4 * HP.diameter_m**2
     g = GM / R**2
-    assert d[:3] == pytest.approx([2022 * math.cos(math.radians(50)), 0,
-                                   -2022 * math.sin(math.radians(50))])
+    assert d[:3] == pytest.approx(
+        [2022 * math.cos(math.radians(50)), 0, -2022 * math.sin(math.radians(50))]
+    )
     assert d[6] == pytest.approx(qa * cx0 / HP.mass_kg - g * math.sin(math.radians(50)))
     assert d[8] == pytest.approx(g * math.cos(math.radians(50)))  # gravity across the axis
-    assert d[9] == pytest.approx(qa * HP.diameter_m * (cldd + 10 * clp * HP.diameter_m / 4044)
-                                 / HP.roll_inertia_kg_m2)
+    assert d[9] == pytest.approx(
+        qa * HP.diameter_m * (cldd + 10 * clp * HP.diameter_m / 4044) / HP.roll_inertia_kg_m2
+    )
     assert d[3] == 10.0  # phi' = p
     assert d[[1, 4, 5, 7, 10, 11]] == pytest.approx(np.zeros(6), abs=1e-12)
 
@@ -102,7 +121,8 @@ def test_flat_and_spherical_density_altitudes_agree_above_the_launch_point():
     assert spherical == pytest.approx(flat, rel=1e-12)
     state[0] = 3e5  # downrange the surface falls away: the flat altitude reads ~7 km too low
     assert abs(sixdof.appendix_b_derivatives(state, HP)[6]) > abs(
-        sixdof.appendix_b_derivatives(state, HP, density_altitude="spherical")[6])
+        sixdof.appendix_b_derivatives(state, HP, density_altitude="spherical")[6]
+    )
 
 
 # --- adaptive no-roll solution against Appendix B's fixed-step RK4 ----------------------------
@@ -115,8 +135,10 @@ def rk4_runs():
         return sixdof.appendix_b_derivatives(state, HP, wind_m_s=(0.0, 5.0, 0.0))
 
     state0 = [0, 0, 0, 0, math.radians(50), 0, 2022.0, 0, 0, 10.0, 0, 0]
-    return {h: sixdof.integrate_fixed_step(derivatives, state0, h, _SPAN_S)[1][-1]
-            for h in (0.0005, 0.00025)}
+    return {
+        h: sixdof.integrate_fixed_step(derivatives, state0, h, _SPAN_S)[1][-1]
+        for h in (0.0005, 0.00025)
+    }
 
 
 @pytest.fixture(scope="module")
@@ -153,16 +175,19 @@ def test_fixed_step_rk4_is_fourth_order():
     def oscillator(t, y):
         return np.array([y[1], -y[0]])
 
-    errors = [abs(sixdof.integrate_fixed_step(oscillator, [1.0, 0.0], h, 2.0)[1][-1, 0]
-                  - math.cos(2.0)) for h in (0.1, 0.05)]
+    errors = [
+        abs(sixdof.integrate_fixed_step(oscillator, [1.0, 0.0], h, 2.0)[1][-1, 0] - math.cos(2.0))
+        for h in (0.1, 0.05)
+    ]
     assert errors[0] / errors[1] == pytest.approx(16, rel=0.05)
 
 
 # --- vacuum: the closed-form Kepler orbit ------------------------------------------------------
 @pytest.fixture(scope="module")
 def vacuum_flight():
-    no_air = AtmosphereModel("no_air", lambda a: 0 * a, get_atmosphere("two_segment").sound_kernel,
-                             "test: density zero")
+    no_air = AtmosphereModel(
+        "no_air", lambda a: 0 * a, get_atmosphere("two_segment").sound_kernel, "test: density zero"
+    )
     return sixdof.simulate_6dof(HP, atmosphere=no_air, rtol=1e-11)
 
 
@@ -217,7 +242,8 @@ def test_flight_table_and_statistics(flights):
     assert flight.attrs["n_rhs"] < 100_000  # the no-roll frame: no spin-rate oscillation
     assert flight.attrs["apogee_altitude_m"] == pytest.approx(flight.altitude_m.max(), abs=5.0)
     assert flight.mach.iloc[0] == pytest.approx(
-        math.hypot(2022.0, 5.0) / get_atmosphere("two_segment").speed_of_sound(0.0))
+        math.hypot(2022.0, 5.0) / get_atmosphere("two_segment").speed_of_sound(0.0)
+    )
 
 
 def test_calm_flight_drifts_only_by_its_spin(flights):
@@ -244,8 +270,9 @@ def test_fins_spin_the_projectile_to_the_roll_equilibrium(flights):
     row = flight[flight.time_s == 2.0].iloc[0]
     air_speed = row.mach * get_atmosphere("two_segment").speed_of_sound(-row.z_m)
     cldd, clp = (np.interp(row.mach, M829.mach, getattr(M829, c)) for c in ("cldd", "clp"))
-    assert row.roll_rate_rad_s == pytest.approx(-2 * air_speed * cldd / (clp * HP.diameter_m),
-                                                rel=0.02)
+    assert row.roll_rate_rad_s == pytest.approx(
+        -2 * air_speed * cldd / (clp * HP.diameter_m), rel=0.02
+    )
 
 
 def test_aerodynamically_stable_flight_is_the_point_mass_3dof(flights):
@@ -280,22 +307,32 @@ def _without(name):
     return dataclasses.replace(HP, **{name: None})
 
 
-@pytest.mark.parametrize("kwargs, name", [
-    ({"elevation_deg": 0.0}, "elevation_deg"), ({"elevation_deg": 91.0}, "elevation_deg"),
-    ({"elevation_deg": 90.0}, "elevation_deg"), ({"elevation_deg": np.nan}, "elevation_deg"),
-    ({"speed_m_s": 0.0}, "speed_m_s"), ({"speed_m_s": -2022.0}, "speed_m_s"),
-    ({"spin_rad_s": np.nan}, "spin_rad_s"), ({"crosswind_m_s": np.inf}, "crosswind_m_s"),
-    ({"atmosphere": "martian"}, "atmosphere"), ({"density_altitude": "round"}, "density_altitude"),
-    ({"rtol": 0.0}, "rtol"), ({"max_time_s": -1.0}, "max_time_s"),
-    ({"output_step_s": 0.0}, "output_step_s"),
-])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"elevation_deg": 0.0}, "elevation_deg"),
+        ({"elevation_deg": 91.0}, "elevation_deg"),
+        ({"elevation_deg": 90.0}, "elevation_deg"),
+        ({"elevation_deg": np.nan}, "elevation_deg"),
+        ({"speed_m_s": 0.0}, "speed_m_s"),
+        ({"speed_m_s": -2022.0}, "speed_m_s"),
+        ({"spin_rad_s": np.nan}, "spin_rad_s"),
+        ({"crosswind_m_s": np.inf}, "crosswind_m_s"),
+        ({"atmosphere": "martian"}, "atmosphere"),
+        ({"density_altitude": "round"}, "density_altitude"),
+        ({"rtol": 0.0}, "rtol"),
+        ({"max_time_s": -1.0}, "max_time_s"),
+        ({"output_step_s": 0.0}, "output_step_s"),
+    ],
+)
 def test_bad_simulation_input_is_named(kwargs, name):
     with pytest.raises(ValueError, match=name):
         sixdof.simulate_6dof(HP, **kwargs)
 
 
-@pytest.mark.parametrize("missing", ["aero", "diameter_m", "roll_inertia_kg_m2",
-                                     "pitch_inertia_kg_m2"])
+@pytest.mark.parametrize(
+    "missing", ["aero", "diameter_m", "roll_inertia_kg_m2", "pitch_inertia_kg_m2"]
+)
 def test_projectile_without_6dof_data_is_named(missing):
     with pytest.raises(ValueError, match=f"projectile 'HP' has no {missing}"):
         sixdof.simulate_6dof(_without(missing))

@@ -33,6 +33,7 @@ def _cd(flow, normalisation):
 
 # --- independent check: NASA SP-3004 (Sims 1964) ------------------------------------------
 
+
 def test_cone_flow_matches_nasa_sp3004_tables():
     table = pd.read_csv(PUBLISHED, comment="#")
     flow = cone_flow(table.mach.to_numpy(), np.radians(table.cone_half_angle_deg.to_numpy()))
@@ -41,6 +42,7 @@ def test_cone_flow_matches_nasa_sp3004_tables():
 
 
 # --- limits and similarity -----------------------------------------------------------------
+
 
 def test_slender_cone_limit_mach_angle_and_slender_body_pressure():
     mach = 3.0
@@ -74,6 +76,7 @@ def test_scalar_and_array_shapes():
 
 # --- drag coefficient and eq 4.8 -----------------------------------------------------------
 
+
 def test_cd_falls_with_mach_over_the_trajectories():
     mach = np.linspace(*TRAJECTORY_MACH_RANGE, 5)
     for normalisation in ("free_stream", "appendix_c"):
@@ -88,7 +91,8 @@ def test_cd_definitions():
     flow = cone_flow(mach, BASELINE_HALF_ANGLE_RAD)
     np.testing.assert_allclose(physical, flow.pressure_coefficient + 0.25 / (0.7 * mach**2))
     assert cone_drag_coefficient(6.0, base_pressure_ratio=1.0) == pytest.approx(
-        flow.pressure_coefficient[1])
+        flow.pressure_coefficient[1]
+    )
 
 
 def test_appendix_c_normalisation_reproduces_eq_4_8(baseline_flow):
@@ -114,23 +118,28 @@ def test_fit_recovers_known_coefficients():
     assert (fit.a, fit.b, fit.c) == pytest.approx((0.05, -0.3, 0.02), rel=1e-6)
     assert fit.r_squared == pytest.approx(1.0)
     assert isinstance(fit.law, ExponentialDragLaw) and fit.law(4.0) == pytest.approx(
-        0.05 * math.exp(-1.2) + 0.02)
+        0.05 * math.exp(-1.2) + 0.02
+    )
 
 
 # --- bad input -----------------------------------------------------------------------------
 
-@pytest.mark.parametrize("mach, half_angle, name", [
-    (float("nan"), 0.1, "mach"),
-    (1.0, 0.1, "mach"),
-    ([3.0, 0.5], 0.1, "mach"),
-    (3.0, float("nan"), "half_angle_rad"),
-    (3.0, 0.0, "half_angle_rad"),
-    (3.0, -0.1, "half_angle_rad"),
-    (3.0, math.pi / 2, "half_angle_rad"),
-    (1.5, math.radians(35.0), "mach"),       # detached: about 30.6 deg is the largest
-    (2.0, math.radians(41.0), "mach"),       # detached: about 40.7 deg is the largest
-    (2.0, math.radians(0.3), "half_angle_rad"),  # too slender to resolve
-])
+
+@pytest.mark.parametrize(
+    "mach, half_angle, name",
+    [
+        (float("nan"), 0.1, "mach"),
+        (1.0, 0.1, "mach"),
+        ([3.0, 0.5], 0.1, "mach"),
+        (3.0, float("nan"), "half_angle_rad"),
+        (3.0, 0.0, "half_angle_rad"),
+        (3.0, -0.1, "half_angle_rad"),
+        (3.0, math.pi / 2, "half_angle_rad"),
+        (1.5, math.radians(35.0), "mach"),  # detached: about 30.6 deg is the largest
+        (2.0, math.radians(41.0), "mach"),  # detached: about 40.7 deg is the largest
+        (2.0, math.radians(0.3), "half_angle_rad"),  # too slender to resolve
+    ],
+)
 def test_bad_cone_flow_input_names_argument(mach, half_angle, name):
     with pytest.raises(ValueError, match=name):
         cone_flow(mach, half_angle)

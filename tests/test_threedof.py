@@ -2,7 +2,6 @@
 conservation laws, symmetry, scipy's own integrator, and convergence under refinement."""
 
 import numpy as np
-import pandas as pd
 import pytest
 from scipy.integrate import solve_ivp
 
@@ -39,22 +38,34 @@ def test_rotating_earth_in_vacuum_flies_the_inertial_conic():
     """On a rotating Earth the inertial launch velocity is the ground velocity plus the
     surface's (omega R cos(latitude), eastward); in vacuum that fixes the conic."""
     omega = earth.ROTATION_RATE_RAD_S
-    flight = threedof.simulate_3dof(BASELINE, 60.0, latitude_deg=0.0, bearing_deg=90.0,
-                                    atmosphere="vacuum", rotation_rate_rad_s=omega, rtol=1e-12)
-    east, up = 2157.0 * np.cos(np.radians(60.0)) + omega * earth.RADIUS_M, 2157.0 * np.sin(
-        np.radians(60.0))
+    flight = threedof.simulate_3dof(
+        BASELINE,
+        60.0,
+        latitude_deg=0.0,
+        bearing_deg=90.0,
+        atmosphere="vacuum",
+        rotation_rate_rad_s=omega,
+        rtol=1e-12,
+    )
+    east, up = (
+        2157.0 * np.cos(np.radians(60.0)) + omega * earth.RADIUS_M,
+        2157.0 * np.sin(np.radians(60.0)),
+    )
     conic = kepler.ballistic_conic(np.hypot(east, up), np.arctan2(up, east))
     assert flight.speed_m_s[0] == pytest.approx(np.hypot(east, up), rel=1e-12)
     assert flight.attrs["apogee_altitude_m"] == pytest.approx(conic.apogee_altitude_m, rel=1e-6)
     assert flight.attrs["time_of_flight_s"] == pytest.approx(conic.time_of_flight_s, rel=1e-6)
     # The ground has turned under the orbit: the Earth-fixed range falls short of the inertial.
     assert flight.attrs["range_m"] == pytest.approx(
-        conic.ground_range_m - omega * earth.RADIUS_M * conic.time_of_flight_s, rel=1e-6)
+        conic.ground_range_m - omega * earth.RADIUS_M * conic.time_of_flight_s, rel=1e-6
+    )
 
 
 @pytest.fixture(scope="module")
 def baseline_flights():
-    return {rtol: threedof.simulate_3dof(BASELINE, 45.0, rtol=rtol) for rtol in (1e-8, 1e-10, 1e-12)}
+    return {
+        rtol: threedof.simulate_3dof(BASELINE, 45.0, rtol=rtol) for rtol in (1e-8, 1e-10, 1e-12)
+    }
 
 
 def test_apogee_and_range_converge_to_a_metre(baseline_flights):
@@ -70,6 +81,7 @@ def test_agrees_with_scipy_solve_ivp(baseline_flights):
     flight = baseline_flights[1e-12]
     area, mass = BASELINE.reference_area_m2, BASELINE.mass_kg
     from harp_analysis.atmosphere import get_atmosphere
+
     air = get_atmosphere("two_segment")
 
     def rhs(t, y):
@@ -82,11 +94,13 @@ def test_agrees_with_scipy_solve_ivp(baseline_flights):
 
     def impact(t, y):
         return np.linalg.norm(y[:3]) - earth.RADIUS_M if t > 1 else 1.0
+
     impact.terminal, impact.direction = True, -1
     elevation = np.radians(45.0)
     y0 = [earth.RADIUS_M, 0, 0, 2157 * np.sin(elevation), 2157 * np.cos(elevation), 0]
-    reference = solve_ivp(rhs, (0, 1000), y0, method="DOP853", rtol=1e-12, atol=1e-9,
-                          events=impact, dense_output=True)
+    reference = solve_ivp(
+        rhs, (0, 1000), y0, method="DOP853", rtol=1e-12, atol=1e-9, events=impact, dense_output=True
+    )
     t_impact = reference.t_events[0][0]
     assert flight.attrs["time_of_flight_s"] == pytest.approx(t_impact, abs=1e-6)
     times = flight.time_s.to_numpy()[::25]
@@ -96,11 +110,13 @@ def test_agrees_with_scipy_solve_ivp(baseline_flights):
 
 @pytest.mark.parametrize("latitude_deg, bearing_deg", [(0, 90), (45, 0), (-30, 270), (60, 123)])
 def test_no_cross_range_without_rotation_or_wind(latitude_deg, bearing_deg):
-    flight = threedof.simulate_3dof(BASELINE, 65.0, latitude_deg=latitude_deg,
-                                    bearing_deg=bearing_deg, output_step_s=5.0)
+    flight = threedof.simulate_3dof(
+        BASELINE, 65.0, latitude_deg=latitude_deg, bearing_deg=bearing_deg, output_step_s=5.0
+    )
     assert np.max(np.abs(flight.cross_range_m)) < 1e-6
     assert flight.attrs["range_m"] == pytest.approx(
-        threedof.simulate_3dof(BASELINE, 65.0).attrs["range_m"], rel=1e-8)
+        threedof.simulate_3dof(BASELINE, 65.0).attrs["range_m"], rel=1e-8
+    )
 
 
 def test_winds_push_the_way_they_blow():
@@ -124,11 +140,13 @@ def test_batch_matches_single_launches():
 def test_table_has_the_shared_columns_and_physical_values():
     flight = threedof.simulate_3dof(HP, 50.0)
     from harp_analysis.trajectory import BASE_COLUMNS
+
     assert tuple(flight.columns) == BASE_COLUMNS
     assert flight.altitude_m.iloc[0] == 0.0 and abs(flight.altitude_m.iloc[-1]) < 1e-3
     assert flight.mach.iloc[0] == pytest.approx(2022.0 / 340.1, rel=1e-3)
-    assert flight.drag_coefficient.iloc[0] == pytest.approx(-np.interp(flight.mach.iloc[0],
-                                                                       M829.mach, M829.cx0))
+    assert flight.drag_coefficient.iloc[0] == pytest.approx(
+        -np.interp(flight.mach.iloc[0], M829.mach, M829.cx0)
+    )
     # Drag only removes angular momentum: it never increases along the flight.
     assert np.all(np.diff(flight.specific_angular_momentum_m2_s) <= 1e-6)
 
@@ -142,14 +160,22 @@ def test_escape_or_short_time_ends_cleanly():
     assert np.isnan(escape.attrs["apogee_time_s"])
 
 
-@pytest.mark.parametrize("kwargs, name", [
-    ({"elevation_deg": 0.0}, "elevation_deg"), ({"elevation_deg": 91.0}, "elevation_deg"),
-    ({"elevation_deg": np.nan}, "elevation_deg"), ({"speed_m_s": -5.0}, "speed_m_s"),
-    ({"latitude_deg": 95.0}, "latitude_deg"), ({"bearing_deg": 360.0}, "bearing_deg"),
-    ({"atmosphere": "martian"}, "atmosphere"), ({"drag_law": "brick"}, "drag_law"),
-    ({"rtol": 0.0}, "rtol"), ({"output_step_s": 0.0}, "output_step_s"),
-    ({"head_wind_m_s": np.inf}, "head_wind_m_s"),
-])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"elevation_deg": 0.0}, "elevation_deg"),
+        ({"elevation_deg": 91.0}, "elevation_deg"),
+        ({"elevation_deg": np.nan}, "elevation_deg"),
+        ({"speed_m_s": -5.0}, "speed_m_s"),
+        ({"latitude_deg": 95.0}, "latitude_deg"),
+        ({"bearing_deg": 360.0}, "bearing_deg"),
+        ({"atmosphere": "martian"}, "atmosphere"),
+        ({"drag_law": "brick"}, "drag_law"),
+        ({"rtol": 0.0}, "rtol"),
+        ({"output_step_s": 0.0}, "output_step_s"),
+        ({"head_wind_m_s": np.inf}, "head_wind_m_s"),
+    ],
+)
 def test_bad_input_is_named(kwargs, name):
     arguments = {"elevation_deg": 45.0} | kwargs
     with pytest.raises((ValueError, TypeError), match=name):
@@ -162,9 +188,16 @@ def test_bad_projectile_is_named():
     with pytest.raises(TypeError, match="projectile"):
         threedof.simulate_3dof("HP", 45.0)
     from harp_analysis.projectiles import Projectile
+
     for name in ("mass_kg", "reference_area_m2", "launch_speed_m_s"):
-        values = dict(name="x", mass_kg=1.0, reference_area_m2=1.0, drag_law=BASELINE_CONE,
-                      launch_speed_m_s=1.0, source="") | {name: 0.0}
+        values = dict(
+            name="x",
+            mass_kg=1.0,
+            reference_area_m2=1.0,
+            drag_law=BASELINE_CONE,
+            launch_speed_m_s=1.0,
+            source="",
+        ) | {name: 0.0}
         with pytest.raises(ValueError, match=name):
             Projectile(**values)
 

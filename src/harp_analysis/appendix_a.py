@@ -33,31 +33,61 @@ from .validation import check_range, finite_scalar
 __all__ = ["simulate_appendix_a"]
 
 
-def simulate_appendix_a(projectile: Projectile, elevation_deg: float, dt_s: float, *,
-                        speed_m_s: float | None = None, latitude_deg: float = 0.0,
-                        longitude_deg: float = 0.0, azimuth_deg: float = 90.0,
-                        earth_spin_rad_s: float = 0.0, max_time_s: float = 3000.0
-                        ) -> pd.DataFrame:
+def simulate_appendix_a(
+    projectile: Projectile,
+    elevation_deg: float,
+    dt_s: float,
+    *,
+    speed_m_s: float | None = None,
+    latitude_deg: float = 0.0,
+    longitude_deg: float = 0.0,
+    azimuth_deg: float = 90.0,
+    earth_spin_rad_s: float = 0.0,
+    max_time_s: float = 3000.0,
+) -> pd.DataFrame:
     """Run Appendix A's macro; returns the rows it would write (every 0.5 s of its clock).
 
     Columns: ``time_s`` (the macro's clock), ``altitude_m``, ``ground_range_m`` (R times the
     angle from the launch point), ``speed_m_s`` (backward-difference speed),
     ``radius_m`` and ``specific_angular_momentum_m2_s`` as the macro computes them.
     """
-    elevation = check_range(finite_scalar(elevation_deg, "elevation_deg"), "elevation_deg",
-                            low=0.0, low_inclusive=False, high=90.0, unit="deg")
-    dt = check_range(finite_scalar(dt_s, "dt_s"), "dt_s", low=0.0, low_inclusive=False,
-                     high=1.0, unit="s")
-    speed = check_range(finite_scalar(projectile.launch_speed_m_s if speed_m_s is None
-                                      else speed_m_s, "speed_m_s"), "speed_m_s", low=0.0,
-                        low_inclusive=False, unit="m/s")
-    lat = math.radians(check_range(finite_scalar(latitude_deg, "latitude_deg"), "latitude_deg",
-                                   low=-90.0, high=90.0, unit="deg"))
+    elevation = check_range(
+        finite_scalar(elevation_deg, "elevation_deg"),
+        "elevation_deg",
+        low=0.0,
+        low_inclusive=False,
+        high=90.0,
+        unit="deg",
+    )
+    dt = check_range(
+        finite_scalar(dt_s, "dt_s"), "dt_s", low=0.0, low_inclusive=False, high=1.0, unit="s"
+    )
+    speed = check_range(
+        finite_scalar(projectile.launch_speed_m_s if speed_m_s is None else speed_m_s, "speed_m_s"),
+        "speed_m_s",
+        low=0.0,
+        low_inclusive=False,
+        unit="m/s",
+    )
+    lat = math.radians(
+        check_range(
+            finite_scalar(latitude_deg, "latitude_deg"),
+            "latitude_deg",
+            low=-90.0,
+            high=90.0,
+            unit="deg",
+        )
+    )
     lon = math.radians(finite_scalar(longitude_deg, "longitude_deg"))
     az, el = math.radians(finite_scalar(azimuth_deg, "azimuth_deg")), math.radians(elevation)
     spin = finite_scalar(earth_spin_rad_s, "earth_spin_rad_s")
     air = get_atmosphere("three_layer")
-    R, GM, area, mass = earth.RADIUS_M, earth.GM_M3_S2, projectile.reference_area_m2, projectile.mass_kg
+    R, GM, area, mass = (
+        earth.RADIUS_M,
+        earth.GM_M3_S2,
+        projectile.reference_area_m2,
+        projectile.mass_kg,
+    )
 
     up = (math.cos(lat) * math.cos(lon), math.cos(lat) * math.sin(lon), math.sin(lat))
     east = (-math.sin(lon), math.cos(lon), 0.0)
@@ -81,12 +111,29 @@ def simulate_appendix_a(projectile: Projectile, elevation_deg: float, dt_s: floa
         r2 = math.sqrt(x2 @ x2)
         step_angle = math.acos(min(1.0, x2 @ x1 / (r2 * r1)))
         if clock > row * 0.5:
-            rows.append((clock, r2 - R, R * math.acos(min(1.0, x2 @ launch / (r2 * R))), v, r1,
-                         r2**2 * step_angle / dt))
+            rows.append(
+                (
+                    clock,
+                    r2 - R,
+                    R * math.acos(min(1.0, x2 @ launch / (r2 * R))),
+                    v,
+                    r1,
+                    r2**2 * step_angle / dt,
+                )
+            )
             row += 1
         x0, x1 = x1, x2
         clock = round(clock + dt, 4)
         if r2 <= R:
             break
-    return pd.DataFrame(rows, columns=["time_s", "altitude_m", "ground_range_m", "speed_m_s",
-                                       "radius_m", "specific_angular_momentum_m2_s"])
+    return pd.DataFrame(
+        rows,
+        columns=[
+            "time_s",
+            "altitude_m",
+            "ground_range_m",
+            "speed_m_s",
+            "radius_m",
+            "specific_angular_momentum_m2_s",
+        ],
+    )

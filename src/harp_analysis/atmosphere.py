@@ -1,4 +1,5 @@
-"""Atmospheric density and speed of sound: the models of Chapters 2 A and 3 B and Appendices A and B.
+"""Atmospheric density and speed of sound: the models of Chapters 2 A and 3 B and Appendices A
+and B.
 
 Five models, each vectorised over altitude (m above the spherical Earth's surface) and exposed
 through one interface, :class:`AtmosphereModel`, so the simulations can take any of them by name
@@ -21,9 +22,10 @@ through one interface, :class:`AtmosphereModel`, so the simulations can take any
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
-from typing import Callable, Literal
+from typing import Literal
 
 import numpy as np
 
@@ -217,21 +219,44 @@ class AtmosphereModel:
 _MODELS = {
     model.name: model
     for model in (
-        AtmosphereModel("us1976", _standard_density, _standard_speed_of_sound,
-                        "US Standard Atmosphere 1976 [47] via ussa1976", _STANDARD_TOP_M,
-                        86_000.0, (11_000.0, 20_000.0, 32_000.0, 47_000.0, 51_000.0, 71_000.0,
-                                   86_000.0)),
-        AtmosphereModel("two_segment", _two_segment_density, _two_segment_speed_of_sound,
-                        "eqs 2.1-2.2 as coded in Appendix B", breakpoints_m=(_SEGMENT_BREAK_M,)),
-        AtmosphereModel("three_layer", _three_layer_density, _three_layer_speed_of_sound,
-                        "Appendix A", breakpoints_m=(11_000.0, 25_000.0)),
+        AtmosphereModel(
+            "us1976",
+            _standard_density,
+            _standard_speed_of_sound,
+            "US Standard Atmosphere 1976 [47] via ussa1976",
+            _STANDARD_TOP_M,
+            86_000.0,
+            (11_000.0, 20_000.0, 32_000.0, 47_000.0, 51_000.0, 71_000.0, 86_000.0),
+        ),
+        AtmosphereModel(
+            "two_segment",
+            _two_segment_density,
+            _two_segment_speed_of_sound,
+            "eqs 2.1-2.2 as coded in Appendix B",
+            breakpoints_m=(_SEGMENT_BREAK_M,),
+        ),
+        AtmosphereModel(
+            "three_layer",
+            _three_layer_density,
+            _three_layer_speed_of_sound,
+            "Appendix A",
+            breakpoints_m=(11_000.0, 25_000.0),
+        ),
         # Eq 3.11 defines only a density; where a simulation needs Mach with it (Fig 4.15) the
         # speed of sound of the simulation's own two-segment model is kept.
-        AtmosphereModel("exponential", _text_exponential_density, _two_segment_speed_of_sound,
-                        "eq 3.11 with k = 0.117 /km; speed of sound of eqs 2.1-2.2"),
+        AtmosphereModel(
+            "exponential",
+            _text_exponential_density,
+            _two_segment_speed_of_sound,
+            "eq 3.11 with k = 0.117 /km; speed of sound of eqs 2.1-2.2",
+        ),
         # No air: drag off, for checks against the closed-form Kepler orbit.
-        AtmosphereModel("vacuum", np.zeros_like, _two_segment_speed_of_sound,
-                        "no air (density zero); speed of sound of eqs 2.1-2.2 for Mach"),
+        AtmosphereModel(
+            "vacuum",
+            np.zeros_like,
+            _two_segment_speed_of_sound,
+            "no air (density zero); speed of sound of eqs 2.1-2.2 for Mach",
+        ),
     )
 }
 ATMOSPHERE_NAMES = tuple(_MODELS)
@@ -286,8 +311,10 @@ class FitDefinition:
 
     def describe(self) -> str:
         rho0 = "rho0 fitted" if self.rho0_free else "rho0 = 1.225 kg/m^3 fixed"
-        return (f"0-{self.top_m / 1e3:g} km every {self.step_m / 1e3:g} km, "
-                f"R^2 of {'density' if self.space == 'linear' else 'log density'}, {rho0}")
+        return (
+            f"0-{self.top_m / 1e3:g} km every {self.step_m / 1e3:g} km, "
+            f"R^2 of {'density' if self.space == 'linear' else 'log density'}, {rho0}"
+        )
 
 
 @dataclass(frozen=True)
@@ -304,8 +331,11 @@ class ExponentialFit:
         return self.decay_constant_per_m * 1e3
 
 
-def model_r_squared(definition: FitDefinition, decay_constant_per_m: float,
-                    surface_density_kg_m3: float = SEA_LEVEL_DENSITY_KG_M3) -> float:
+def model_r_squared(
+    definition: FitDefinition,
+    decay_constant_per_m: float,
+    surface_density_kg_m3: float = SEA_LEVEL_DENSITY_KG_M3,
+) -> float:
     """R^2 of the model rho0 exp(-k a) against the 1976 standard, on ``definition``'s grid and
     in its space (density or log density)."""
     altitude = definition.altitudes_m()
@@ -336,13 +366,19 @@ def fit_exponential(definition: FitDefinition) -> ExponentialFit:
     elif definition.space == "log":
         k = -np.sum(altitude * np.log(observed / rho0)) / np.sum(altitude**2)
     elif definition.rho0_free:
-        (k, rho0), _ = curve_fit(lambda a, k, r: r * np.exp(-k * a), altitude, observed,
-                                 p0=(TEXT_DECAY_CONSTANT_PER_M, rho0))
+        (k, rho0), _ = curve_fit(
+            lambda a, k, r: r * np.exp(-k * a),
+            altitude,
+            observed,
+            p0=(TEXT_DECAY_CONSTANT_PER_M, rho0),
+        )
     else:
-        (k,), _ = curve_fit(lambda a, k: rho0 * np.exp(-k * a), altitude, observed,
-                            p0=(TEXT_DECAY_CONSTANT_PER_M,))
-    return ExponentialFit(definition, float(k), float(rho0),
-                          model_r_squared(definition, float(k), float(rho0)))
+        (k,), _ = curve_fit(
+            lambda a, k: rho0 * np.exp(-k * a), altitude, observed, p0=(TEXT_DECAY_CONSTANT_PER_M,)
+        )
+    return ExponentialFit(
+        definition, float(k), float(rho0), model_r_squared(definition, float(k), float(rho0))
+    )
 
 
 #: The definitions compared in notebook 01 (altitude range x grid x space x rho0).
@@ -378,13 +414,15 @@ def fit_definition_table(definitions=FIT_DEFINITIONS):
     rows = []
     for definition in definitions:
         fit = fit_exponential(definition)
-        rows.append({
-            "altitudes": f"0-{definition.top_m / 1e3:g} km",
-            "grid_km": definition.step_m / 1e3,
-            "R2_space": definition.space,
-            "rho0": "fitted" if definition.rho0_free else "1.225 fixed",
-            "rho0_kg_m3": fit.surface_density_kg_m3,
-            "k_per_km": fit.decay_constant_per_km,
-            "R2": fit.r_squared,
-        })
+        rows.append(
+            {
+                "altitudes": f"0-{definition.top_m / 1e3:g} km",
+                "grid_km": definition.step_m / 1e3,
+                "R2_space": definition.space,
+                "rho0": "fitted" if definition.rho0_free else "1.225 fixed",
+                "rho0_kg_m3": fit.surface_density_kg_m3,
+                "k_per_km": fit.decay_constant_per_km,
+                "R2": fit.r_squared,
+            }
+        )
     return pd.DataFrame(rows)

@@ -39,8 +39,12 @@ def execute_notebook(path: Path, figures_dir: Path | None = None, timeout_s: int
         environment["HARP_ANALYSIS_FIGURES_DIR"] = str(figures_dir)
     start = time.perf_counter()
     notebook = nbformat.read(path, as_version=4)
-    client = NotebookClient(notebook, timeout=timeout_s, kernel_name="python3",
-                            resources={"metadata": {"path": str(path.parent)}})
+    client = NotebookClient(
+        notebook,
+        timeout=timeout_s,
+        kernel_name="python3",
+        resources={"metadata": {"path": str(path.parent)}},
+    )
     client.execute(env=environment)  # passed on to the kernel manager's start_kernel
     return time.perf_counter() - start
 

@@ -20,21 +20,41 @@ from .projectiles import get_projectile
 from .threedof import simulate_3dof
 from .validation import ModelValidityWarning
 
-__all__ = ["BASELINE_ELEVATIONS_DEG", "VARIANTS", "case", "error_at_apogee_km", "error_ratio",
-           "max_error_change_km", "elevation_error_ratio", "initial_natural_frequency",
-           "linearisation_apogee_change_km", "response_ratio", "radius_change_below",
-           "max_error_change_with_terms", "max_cd_change_below", "asymptotic_momentum_error",
-           "mks_beta", "launch_error_m"]
+__all__ = [
+    "BASELINE_ELEVATIONS_DEG",
+    "VARIANTS",
+    "case",
+    "error_at_apogee_km",
+    "error_ratio",
+    "max_error_change_km",
+    "elevation_error_ratio",
+    "initial_natural_frequency",
+    "linearisation_apogee_change_km",
+    "response_ratio",
+    "radius_change_below",
+    "max_error_change_with_terms",
+    "max_cd_change_below",
+    "asymptotic_momentum_error",
+    "mks_beta",
+    "launch_error_m",
+]
 
 #: Chapter 4 B and C: the baseline cone "for the elevations of fire" 30 to 85 deg.
 BASELINE_ELEVATIONS_DEG = (30.0, 45.0, 65.0, 85.0)
 
 
 @cache
-def case(projectile: str = "baseline", elevation_deg: float = 45.0, *, n_terms: int = 3,
-         speed_m_s: float | None = None, atmosphere: str = "two_segment",
-         head_wind_m_s: float = 0.0, cross_wind_m_s: float = 0.0,
-         momentum_from_apogee: bool = False):
+def case(
+    projectile: str = "baseline",
+    elevation_deg: float = 45.0,
+    *,
+    n_terms: int = 3,
+    speed_m_s: float | None = None,
+    atmosphere: str = "two_segment",
+    head_wind_m_s: float = 0.0,
+    cross_wind_m_s: float = 0.0,
+    momentum_from_apogee: bool = False,
+):
     """(3DOF table, MKS, error table) of one launch.
 
     ``atmosphere="exponential"`` flies the 3DOF through eq 3.11's density (Fig 4.15);
@@ -43,19 +63,31 @@ def case(projectile: str = "baseline", elevation_deg: float = 45.0, *, n_terms: 
     h0 exp(-beta s) = h_apogee while the driving function keeps its beta.
     """
     p = get_projectile(projectile)
-    flight = simulate_3dof(p, elevation_deg, speed_m_s=speed_m_s, atmosphere=atmosphere,
-                           head_wind_m_s=head_wind_m_s, cross_wind_m_s=cross_wind_m_s,
-                           output_step_s=0.25)
+    flight = simulate_3dof(
+        p,
+        elevation_deg,
+        speed_m_s=speed_m_s,
+        atmosphere=atmosphere,
+        head_wind_m_s=head_wind_m_s,
+        cross_wind_m_s=cross_wind_m_s,
+        output_step_s=0.25,
+    )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelValidityWarning)  # HP and LP exceed beta = 0.25
         solution = mks.for_projectile(p, elevation_deg, speed_m_s=speed_m_s, n_terms=n_terms)
         if momentum_from_apogee:
-            h_apogee = np.interp(flight.attrs["apogee_time_s"], flight.time_s,
-                                 flight.specific_angular_momentum_m2_s)
+            h_apogee = np.interp(
+                flight.attrs["apogee_time_s"], flight.time_s, flight.specific_angular_momentum_m2_s
+            )
             scale = np.log(solution.h0 / h_apogee) / solution.beta
             solution = mks.ModifiedKeplerSolution(
-                solution.speed_m_s.item(), solution.elevation_rad.item(), solution.beta.item(),
-                solution.tau.item(), n_terms=n_terms, decay_scale=scale.item())
+                solution.speed_m_s.item(),
+                solution.elevation_rad.item(),
+                solution.beta.item(),
+                solution.tau.item(),
+                n_terms=n_terms,
+                decay_scale=scale.item(),
+            )
     return flight, solution, position_errors(flight, solution)
 
 
@@ -63,8 +95,9 @@ def _at_apogee(errors: pd.DataFrame, flight: pd.DataFrame, column: str) -> float
     return float(np.interp(flight.attrs["apogee_time_s"], errors.time_s, errors[column]))
 
 
-def error_at_apogee_km(projectile: str = "baseline", elevation_deg: float = 45.0,
-                       relative: bool = False, **variant) -> float:
+def error_at_apogee_km(
+    projectile: str = "baseline", elevation_deg: float = 45.0, relative: bool = False, **variant
+) -> float:
     """Total position error at the 3DOF's apogee (km, or as a share of the apogee)."""
     flight, _, errors = case(projectile, elevation_deg, **variant)
     error = _at_apogee(errors, flight, "total_geometric_m")
@@ -72,28 +105,37 @@ def error_at_apogee_km(projectile: str = "baseline", elevation_deg: float = 45.0
 
 
 #: The variants of Chapter 4 C (Figs 4.13, 4.15, 4.17, 4.18) as arguments of :func:`case`.
-VARIANTS = {"exponential_density": dict(atmosphere="exponential"),
-            "momentum_from_apogee": dict(momentum_from_apogee=True),
-            "speed_plus_20pct": dict(speed_m_s=2590.0),
-            "winds": dict(head_wind_m_s=6.0, cross_wind_m_s=6.0)}
+VARIANTS = {
+    "exponential_density": dict(atmosphere="exponential"),
+    "momentum_from_apogee": dict(momentum_from_apogee=True),
+    "speed_plus_20pct": dict(speed_m_s=2590.0),
+    "winds": dict(head_wind_m_s=6.0, cross_wind_m_s=6.0),
+}
 
 
 def error_ratio(variant: str, elevation_deg: float | None = None) -> float:
     """Error at apogee of a Chapter 4 C variant over the standard case's (baseline), at one
     elevation or, by default, summed over :data:`BASELINE_ELEVATIONS_DEG`."""
     elevations = BASELINE_ELEVATIONS_DEG if elevation_deg is None else (elevation_deg,)
-    return (sum(error_at_apogee_km("baseline", e, **VARIANTS[variant]) for e in elevations)
-            / sum(error_at_apogee_km("baseline", e) for e in elevations))
+    return sum(error_at_apogee_km("baseline", e, **VARIANTS[variant]) for e in elevations) / sum(
+        error_at_apogee_km("baseline", e) for e in elevations
+    )
 
 
 def max_error_change_km(variant: str) -> float:
     """Largest change (km) of the error at apogee that a variant causes, over the elevations."""
-    return max(abs(error_at_apogee_km("baseline", e, **VARIANTS[variant])
-                   - error_at_apogee_km("baseline", e)) for e in BASELINE_ELEVATIONS_DEG)
+    return max(
+        abs(
+            error_at_apogee_km("baseline", e, **VARIANTS[variant])
+            - error_at_apogee_km("baseline", e)
+        )
+        for e in BASELINE_ELEVATIONS_DEG
+    )
 
 
-def max_error_change_with_terms(projectile: str = "HP", elevation_deg: float = 50.0,
-                                terms: int = 10) -> float:
+def max_error_change_with_terms(
+    projectile: str = "HP", elevation_deg: float = 50.0, terms: int = 10
+) -> float:
     """Largest change of the error up to apogee from 3 to ``terms`` series terms, as a share
     of the 3-term error at apogee (Ch. 4 A: more terms "do not significantly increase the
     accuracy")."""
@@ -110,8 +152,10 @@ def max_cd_change_below(altitude_km: float = 20.0) -> float:
     changes = []
     for elevation in BASELINE_ELEVATIONS_DEG:
         flight = case("baseline", elevation)[0]
-        low = flight[(flight.altitude_m < altitude_km * 1e3)
-                     & (flight.time_s < flight.attrs["apogee_time_s"])]
+        low = flight[
+            (flight.altitude_m < altitude_km * 1e3)
+            & (flight.time_s < flight.attrs["apogee_time_s"])
+        ]
         changes.append(np.max(np.abs(low.drag_coefficient / low.drag_coefficient.iloc[0] - 1)))
     return float(max(changes))
 
@@ -119,8 +163,9 @@ def max_cd_change_below(altitude_km: float = 20.0) -> float:
 def asymptotic_momentum_error(projectile: str = "baseline", elevation_deg: float = 45.0) -> float:
     """(h_inf of the MKS - h of the 3DOF at apogee) / h at apogee (Fig 4.12)."""
     flight, solution, _ = case(projectile, elevation_deg)
-    h_apogee = np.interp(flight.attrs["apogee_time_s"], flight.time_s,
-                         flight.specific_angular_momentum_m2_s)
+    h_apogee = np.interp(
+        flight.attrs["apogee_time_s"], flight.time_s, flight.specific_angular_momentum_m2_s
+    )
     return float(solution.h_inf[0, 0] / h_apogee - 1)
 
 
@@ -144,22 +189,24 @@ def initial_natural_frequency(projectile: str = "HP", elevation_deg: float = 50.
     return nonlinear_kepler.initial_natural_frequency(case(projectile, elevation_deg)[1])
 
 
-def linearisation_apogee_change_km(projectile: str = "HP", elevation_deg: float = 50.0,
-                                   form: str = "eq_3_25") -> float:
+def linearisation_apogee_change_km(
+    projectile: str = "HP", elevation_deg: float = 50.0, form: str = "eq_3_25"
+) -> float:
     """Apogee of the unlinearised equation ``form`` minus eq 3.30's (km), Assumption 6."""
     solution = case(projectile, elevation_deg)[1]
     return nonlinear_kepler.linearisation_error(solution, form).apogee_m / 1e3
 
 
-def response_ratio(projectile: str = "HP", elevation_deg: float = 50.0,
-                   multiple: float = 1.0) -> float:
+def response_ratio(
+    projectile: str = "HP", elevation_deg: float = 50.0, multiple: float = 1.0
+) -> float:
     """Fig 3.4: response of the linearised system (omega_n = 1) over the nonlinear one (omega_n
     at launch) at the driving frequency ``multiple`` * tau."""
     solution = case(projectile, elevation_deg)[1]
     omega = multiple * solution.tau.item()
-    return (nonlinear_kepler.frequency_response(omega, 1.0)
-            / nonlinear_kepler.frequency_response(
-                omega, nonlinear_kepler.initial_natural_frequency(solution)))
+    return nonlinear_kepler.frequency_response(omega, 1.0) / nonlinear_kepler.frequency_response(
+        omega, nonlinear_kepler.initial_natural_frequency(solution)
+    )
 
 
 def radius_change_below(altitude_km: float = 20.0) -> float:

@@ -19,8 +19,15 @@ import numpy as np
 
 from .validation import check_choice, check_range, finite_array
 
-__all__ = ["ExponentialDragLaw", "TabulatedDragLaw", "AeroTables", "M829", "BASELINE_CONE",
-           "get_drag_law", "DRAG_LAW_NAMES"]
+__all__ = [
+    "ExponentialDragLaw",
+    "TabulatedDragLaw",
+    "AeroTables",
+    "M829",
+    "BASELINE_CONE",
+    "get_drag_law",
+    "DRAG_LAW_NAMES",
+]
 
 
 def _mach(mach) -> np.ndarray:
@@ -73,12 +80,12 @@ class AeroTables:
     """Aerodynamic coefficient tables against Mach, named and ordered as in Appendix B."""
 
     mach: tuple[float, ...]
-    cx0: tuple[float, ...]   # axial force, zero yaw (negative: drag)
-    cx2: tuple[float, ...]   # axial force, yaw-squared term
-    cna: tuple[float, ...]   # normal force slope
+    cx0: tuple[float, ...]  # axial force, zero yaw (negative: drag)
+    cx2: tuple[float, ...]  # axial force, yaw-squared term
+    cna: tuple[float, ...]  # normal force slope
     cypa: tuple[float, ...]  # Magnus force
-    cmq: tuple[float, ...]   # pitch damping
-    clp: tuple[float, ...]   # roll damping
+    cmq: tuple[float, ...]  # pitch damping
+    clp: tuple[float, ...]  # roll damping
     cldd: tuple[float, ...]  # roll driving (fin cant)
     sldel: tuple[float, ...]  # centre-of-pressure offset of the normal force (m)
     slmag: tuple[float, ...]  # centre-of-pressure offset of the Magnus force (m)

@@ -6,8 +6,13 @@ parameter is Appendix A's GM = 398600.4418 km^3/s^2.
 
 import math
 
-__all__ = ["RADIUS_M", "GM_M3_S2", "ROTATION_RATE_RAD_S", "STANDARD_GRAVITY_M_S2",
-           "surface_gravity_m_s2"]
+__all__ = [
+    "RADIUS_M",
+    "GM_M3_S2",
+    "ROTATION_RATE_RAD_S",
+    "STANDARD_GRAVITY_M_S2",
+    "surface_gravity_m_s2",
+]
 
 RADIUS_M = 6_378_000.0
 GM_M3_S2 = 398_600.4418e9

@@ -41,35 +41,71 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+
 from . import earth, mks
 from .atmosphere import TEXT_DECAY_CONSTANT_PER_M
-from .threedof import launch_frame
 from .sites import get_site
+from .threedof import launch_frame
 from .validation import check_choice, check_range, finite_array
 
-__all__ = ["EciModel", "CONSISTENT", "DISSERTATION", "PRINTED_COLUMNS", "MODELS", "get_model",
-           "LaunchCorrection", "surface_velocity", "relative_velocity", "misalignment_angle",
-           "speed_ratio_squared", "speed_ratio_squared_eq_5_3", "tangent_speed",
-           "tangent_direction", "elevation_azimuth", "initial_angular_momentum",
-           "launch_correction", "eci_solution", "solution_for", "site_surface_speed_km_s",
-           "inertial_positions"]
+__all__ = [
+    "EciModel",
+    "CONSISTENT",
+    "DISSERTATION",
+    "PRINTED_COLUMNS",
+    "MODELS",
+    "get_model",
+    "LaunchCorrection",
+    "surface_velocity",
+    "relative_velocity",
+    "misalignment_angle",
+    "speed_ratio_squared",
+    "speed_ratio_squared_eq_5_3",
+    "tangent_speed",
+    "tangent_direction",
+    "elevation_azimuth",
+    "initial_angular_momentum",
+    "launch_correction",
+    "eci_solution",
+    "solution_for",
+    "site_surface_speed_km_s",
+    "inertial_positions",
+]
 
 _Z_AXIS = np.array([0.0, 0.0, 1.0])
 
 
 def _check_launch(speed_m_s, elevation_rad, bearing_rad, latitude_rad):
-    speed = check_range(finite_array(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0,
-                        low_inclusive=False, unit="m/s")
-    elevation = check_range(finite_array(elevation_rad, "elevation_rad"), "elevation_rad",
-                            low=0.0, low_inclusive=False, high=math.pi / 2, unit="rad")
-    bearing = check_range(finite_array(bearing_rad, "bearing_rad"), "bearing_rad", low=0.0,
-                          high=2 * math.pi, high_inclusive=False, unit="rad")
+    speed = check_range(
+        finite_array(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0, low_inclusive=False, unit="m/s"
+    )
+    elevation = check_range(
+        finite_array(elevation_rad, "elevation_rad"),
+        "elevation_rad",
+        low=0.0,
+        low_inclusive=False,
+        high=math.pi / 2,
+        unit="rad",
+    )
+    bearing = check_range(
+        finite_array(bearing_rad, "bearing_rad"),
+        "bearing_rad",
+        low=0.0,
+        high=2 * math.pi,
+        high_inclusive=False,
+        unit="rad",
+    )
     return np.broadcast_arrays(speed, elevation, bearing, _check_latitude(latitude_rad))
 
 
 def _check_latitude(latitude_rad):
-    return check_range(finite_array(latitude_rad, "latitude_rad"), "latitude_rad",
-                       low=-math.pi / 2, high=math.pi / 2, unit="rad")
+    return check_range(
+        finite_array(latitude_rad, "latitude_rad"),
+        "latitude_rad",
+        low=-math.pi / 2,
+        high=math.pi / 2,
+        unit="rad",
+    )
 
 
 def _dot(a, b):
@@ -80,8 +116,9 @@ def _norm(a):
     return np.sqrt(_dot(a, a))
 
 
-def surface_velocity(latitude_rad, *, rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
-                     radius_m=earth.RADIUS_M):
+def surface_velocity(
+    latitude_rad, *, rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S, radius_m=earth.RADIUS_M
+):
     """Eq 6.16: omega x r0 (m/s), the launch site's velocity, a (3, ...) vector due east of
     magnitude omega r0 cos(latitude): 451.8 m/s at Barbados."""
     latitude = _check_latitude(latitude_rad)
@@ -92,8 +129,9 @@ def surface_velocity(latitude_rad, *, rotation_rate_rad_s=earth.ROTATION_RATE_RA
 def relative_velocity(speed_m_s, elevation_rad, bearing_rad, latitude_rad):
     """Vrel (m/s), the muzzle velocity relative to the ground: ``speed_m_s`` at ``elevation_rad``
     above the horizon along ``bearing_rad`` from true north (Fig 5.1)."""
-    speed, elevation, bearing, latitude = _check_launch(speed_m_s, elevation_rad, bearing_rad,
-                                                        latitude_rad)
+    speed, elevation, bearing, latitude = _check_launch(
+        speed_m_s, elevation_rad, bearing_rad, latitude_rad
+    )
     up, downrange, _ = launch_frame(latitude, 0.0, bearing)
     return speed * (np.cos(elevation) * downrange + np.sin(elevation) * up)
 
@@ -109,9 +147,13 @@ def speed_ratio_squared(relative_m_s, inertial_m_s):
     return _dot(relative_m_s, relative_m_s) / _dot(inertial_m_s, inertial_m_s)
 
 
-def speed_ratio_squared_eq_5_3(inertial_m_s, latitude_rad, *,
-                               rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
-                               radius_m=earth.RADIUS_M):
+def speed_ratio_squared_eq_5_3(
+    inertial_m_s,
+    latitude_rad,
+    *,
+    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+    radius_m=earth.RADIUS_M,
+):
     """Eq 5.3 as printed: 1 - 2 Vx omega r cos(LA)/V^2 + (omega r)^2 cos^2(LA)/V^2.
 
     With Vx the EASTWARD component of the inertial V (not of Vrel) this is |V - omega x r|^2/V^2
@@ -123,15 +165,25 @@ def speed_ratio_squared_eq_5_3(inertial_m_s, latitude_rad, *,
     return 1 - 2 * _dot(inertial_m_s, east) * surface / v_squared + surface**2 / v_squared
 
 
-def tangent_speed(drag_area_m2, surface_density_kg_m3, mass_kg, misalignment_rad,
-                  relative_speed_m_s, relative_elevation_rad,
-                  decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M):
+def tangent_speed(
+    drag_area_m2,
+    surface_density_kg_m3,
+    mass_kg,
+    misalignment_rad,
+    relative_speed_m_s,
+    relative_elevation_rad,
+    decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
+):
     """Eq 5.8: V_tangent = Cd A rho0 sin(mu) Vrel / (2 m k sin(phi_rel)) (m/s), the integral of
     the cross-track drag (eq 5.5) along the straight climb a = Vrel sin(phi_rel) t (eq 5.7);
     ``drag_area_m2`` is Cd A."""
-    return (np.asarray(drag_area_m2) * surface_density_kg_m3 * np.sin(misalignment_rad)
-            * relative_speed_m_s
-            / (2 * mass_kg * decay_constant_per_m * np.sin(relative_elevation_rad)))
+    return (
+        np.asarray(drag_area_m2)
+        * surface_density_kg_m3
+        * np.sin(misalignment_rad)
+        * relative_speed_m_s
+        / (2 * mass_kg * decay_constant_per_m * np.sin(relative_elevation_rad))
+    )
 
 
 def tangent_direction(relative_m_s, inertial_m_s):
@@ -185,27 +237,48 @@ class EciModel:
     beta_column: str = "beta"
 
     def __post_init__(self):
-        for name, choices in (("tangent_sine", ("gun", "corrected")),
-                              ("beta_elevation", ("gun", "launch")),
-                              ("tau_elevation", ("corrected", "launch")),
-                              ("speed_ratio", ("corrected", "launch")),
-                              ("decay", ("printed", "consistent")),
-                              ("beta_column", ("beta", "beta_cos_mu"))):
+        for name, choices in (
+            ("tangent_sine", ("gun", "corrected")),
+            ("beta_elevation", ("gun", "launch")),
+            ("tau_elevation", ("corrected", "launch")),
+            ("speed_ratio", ("corrected", "launch")),
+            ("decay", ("printed", "consistent")),
+            ("beta_column", ("beta", "beta_cos_mu")),
+        ):
             check_choice(getattr(self, name), name, choices)
 
 
 #: The project's model: eqs 5.8 and 6.11-6.15 as printed, except the decay (eq 3.23).
-CONSISTENT = EciModel("consistent", include_tangent=True, tangent_sine="gun",
-                      beta_elevation="launch", tau_elevation="launch", speed_ratio="corrected",
-                      decay="consistent")
+CONSISTENT = EciModel(
+    "consistent",
+    include_tangent=True,
+    tangent_sine="gun",
+    beta_elevation="launch",
+    tau_elevation="launch",
+    speed_ratio="corrected",
+    decay="consistent",
+)
 #: The dissertation's own pipeline, recovered from Appendix E's Error column (:mod:`.harp`).
-DISSERTATION = EciModel("dissertation", include_tangent=True, tangent_sine="corrected",
-                        beta_elevation="gun", tau_elevation="corrected", speed_ratio="launch",
-                        decay="consistent", beta_column="beta_cos_mu")
+DISSERTATION = EciModel(
+    "dissertation",
+    include_tangent=True,
+    tangent_sine="corrected",
+    beta_elevation="gun",
+    tau_elevation="corrected",
+    speed_ratio="launch",
+    decay="consistent",
+    beta_column="beta_cos_mu",
+)
 #: What Appendices D and E's corrected columns describe: no V_tangent, eq 6.14 as printed.
-PRINTED_COLUMNS = EciModel("printed_columns", include_tangent=False, tangent_sine="gun",
-                           beta_elevation="launch", tau_elevation="launch",
-                           speed_ratio="corrected", decay="printed")
+PRINTED_COLUMNS = EciModel(
+    "printed_columns",
+    include_tangent=False,
+    tangent_sine="gun",
+    beta_elevation="launch",
+    tau_elevation="launch",
+    speed_ratio="corrected",
+    decay="printed",
+)
 MODELS = {model.name: model for model in (DISSERTATION, CONSISTENT, PRINTED_COLUMNS)}
 
 
@@ -221,21 +294,21 @@ class LaunchCorrection:
     """Chapter 5's corrections of one or many launches (arrays broadcast together)."""
 
     model: EciModel
-    relative_m_s: np.ndarray           # Vrel, (3, ...)
-    surface_m_s: np.ndarray            # omega x r0, (3, ...)
-    misalignment_rad: np.ndarray       # mu between Vrel and Vrel + omega x r0
-    corrected_speed_m_s: np.ndarray    # |Vrel + omega x r0|, Appendices D/E's corrected columns
+    relative_m_s: np.ndarray  # Vrel, (3, ...)
+    surface_m_s: np.ndarray  # omega x r0, (3, ...)
+    misalignment_rad: np.ndarray  # mu between Vrel and Vrel + omega x r0
+    corrected_speed_m_s: np.ndarray  # |Vrel + omega x r0|, Appendices D/E's corrected columns
     corrected_elevation_rad: np.ndarray
     corrected_azimuth_rad: np.ndarray
-    tangent_speed_m_s: np.ndarray      # eq 5.8
-    velocity_m_s: np.ndarray           # the launch velocity: eq 6.15, with or without V_t
+    tangent_speed_m_s: np.ndarray  # eq 5.8
+    velocity_m_s: np.ndarray  # the launch velocity: eq 6.15, with or without V_t
     speed_m_s: np.ndarray
     elevation_rad: np.ndarray
     azimuth_rad: np.ndarray
-    speed_ratio_squared: np.ndarray    # (Vrel/V)^2, eq 5.3
-    beta: np.ndarray                   # eq 6.11
-    tau: np.ndarray                    # eq 6.12
-    initial_angular_momentum_m2_s: np.ndarray      # eq 6.13
+    speed_ratio_squared: np.ndarray  # (Vrel/V)^2, eq 5.3
+    beta: np.ndarray  # eq 6.11
+    tau: np.ndarray  # eq 6.12
+    initial_angular_momentum_m2_s: np.ndarray  # eq 6.13
 
     @property
     def drive_scale(self) -> np.ndarray:
@@ -260,73 +333,146 @@ class LaunchCorrection:
         return self.initial_angular_momentum_m2_s * np.exp(-self.beta * self.decay_scale)
 
 
-def launch_correction(speed_m_s, elevation_rad, bearing_rad, latitude_rad, *, drag_area_m2,
-                      mass_kg, surface_density_kg_m3,
-                      decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
-                      rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S, radius_m=earth.RADIUS_M,
-                      model: str | EciModel = CONSISTENT) -> LaunchCorrection:
+def launch_correction(
+    speed_m_s,
+    elevation_rad,
+    bearing_rad,
+    latitude_rad,
+    *,
+    drag_area_m2,
+    mass_kg,
+    surface_density_kg_m3,
+    decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
+    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+    radius_m=earth.RADIUS_M,
+    model: str | EciModel = CONSISTENT,
+) -> LaunchCorrection:
     """Eqs 5.1-5.8 and 6.11-6.16 for guns firing at ``speed_m_s`` (relative to the ground),
     ``elevation_rad``, ``bearing_rad`` from ``latitude_rad``; ``drag_area_m2`` is Cd0 A and
     ``model`` (an :class:`EciModel` or its name) settles what the text leaves open.
 
     mu refers to V = Vrel + omega x r0, as in Figs 5.2-5.3 and the appendices' mu column."""
     model = get_model(model)
-    mass = check_range(finite_array(mass_kg, "mass_kg"), "mass_kg", low=0.0, low_inclusive=False,
-                       unit="kg")
-    drag_area = check_range(finite_array(drag_area_m2, "drag_area_m2"), "drag_area_m2", low=0.0,
-                            unit="m^2")
-    density = check_range(finite_array(surface_density_kg_m3, "surface_density_kg_m3"),
-                          "surface_density_kg_m3", low=0.0, unit="kg/m^3")
+    mass = check_range(
+        finite_array(mass_kg, "mass_kg"), "mass_kg", low=0.0, low_inclusive=False, unit="kg"
+    )
+    drag_area = check_range(
+        finite_array(drag_area_m2, "drag_area_m2"), "drag_area_m2", low=0.0, unit="m^2"
+    )
+    density = check_range(
+        finite_array(surface_density_kg_m3, "surface_density_kg_m3"),
+        "surface_density_kg_m3",
+        low=0.0,
+        unit="kg/m^3",
+    )
     speed_m_s, elevation_rad, bearing_rad, latitude_rad = np.broadcast_arrays(
-        *_check_launch(speed_m_s, elevation_rad, bearing_rad, latitude_rad), mass, drag_area,
-        density)[:4]
+        *_check_launch(speed_m_s, elevation_rad, bearing_rad, latitude_rad),
+        mass,
+        drag_area,
+        density,
+    )[:4]
     relative = relative_velocity(speed_m_s, elevation_rad, bearing_rad, latitude_rad)
-    surface = surface_velocity(latitude_rad, rotation_rate_rad_s=rotation_rate_rad_s,
-                               radius_m=radius_m)
+    surface = surface_velocity(
+        latitude_rad, rotation_rate_rad_s=rotation_rate_rad_s, radius_m=radius_m
+    )
     corrected = relative + surface
     mu = misalignment_angle(relative, corrected)
     corrected_elevation, corrected_azimuth = elevation_azimuth(corrected, latitude_rad)
     climb = {"gun": elevation_rad, "corrected": corrected_elevation}[model.tangent_sine]
-    tangent = tangent_speed(drag_area, density, mass, mu, _norm(relative), climb,
-                            decay_constant_per_m)
+    tangent = tangent_speed(
+        drag_area, density, mass, mu, _norm(relative), climb, decay_constant_per_m
+    )
     velocity = corrected + model.include_tangent * tangent * tangent_direction(relative, corrected)
     elevation, azimuth = elevation_azimuth(velocity, latitude_rad)
     ratio_of = {"corrected": corrected, "launch": velocity}[model.speed_ratio]
     beta = mks.decay_factor_beta(
-        drag_area, density, 1.0, mass,
-        {"gun": elevation_rad, "launch": elevation}[model.beta_elevation], decay_constant_per_m)
-    tau = mks.decay_rate_tau({"corrected": corrected_elevation, "launch": elevation}[
-        model.tau_elevation], decay_constant_per_m, radius_m)
+        drag_area,
+        density,
+        1.0,
+        mass,
+        {"gun": elevation_rad, "launch": elevation}[model.beta_elevation],
+        decay_constant_per_m,
+    )
+    tau = mks.decay_rate_tau(
+        {"corrected": corrected_elevation, "launch": elevation}[model.tau_elevation],
+        decay_constant_per_m,
+        radius_m,
+    )
     speed = _norm(velocity)
     return LaunchCorrection(
-        model, relative, surface, mu, _norm(corrected), corrected_elevation, corrected_azimuth,
-        tangent, velocity, speed, elevation, azimuth,
-        speed_ratio_squared(ratio_of - surface, ratio_of), beta, tau,
-        initial_angular_momentum(speed, elevation, radius_m))
+        model,
+        relative,
+        surface,
+        mu,
+        _norm(corrected),
+        corrected_elevation,
+        corrected_azimuth,
+        tangent,
+        velocity,
+        speed,
+        elevation,
+        azimuth,
+        speed_ratio_squared(ratio_of - surface, ratio_of),
+        beta,
+        tau,
+        initial_angular_momentum(speed, elevation, radius_m),
+    )
 
 
-def eci_solution(speed_m_s, elevation_rad, bearing_rad, latitude_rad, *, drag_area_m2, mass_kg,
-                 surface_density_kg_m3, decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
-                 rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S, radius_m=earth.RADIUS_M,
-                 model: str | EciModel = CONSISTENT, n_terms: int = 3,
-                 warn: bool = True) -> mks.ModifiedKeplerSolution:
+def eci_solution(
+    speed_m_s,
+    elevation_rad,
+    bearing_rad,
+    latitude_rad,
+    *,
+    drag_area_m2,
+    mass_kg,
+    surface_density_kg_m3,
+    decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
+    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+    radius_m=earth.RADIUS_M,
+    model: str | EciModel = CONSISTENT,
+    n_terms: int = 3,
+    warn: bool = True,
+) -> mks.ModifiedKeplerSolution:
     """The ECI Modified Kepler solution (eqs 6.6-6.15): the MKS launched at the launch speed
     and elevation of :func:`launch_correction` with its beta and tau, drive_scale = cos(mu)
     (Vrel/V)^2 (eqs 6.9-6.10) and the decay of ``model``."""
-    return solution_for(launch_correction(
-        speed_m_s, elevation_rad, bearing_rad, latitude_rad, drag_area_m2=drag_area_m2,
-        mass_kg=mass_kg, surface_density_kg_m3=surface_density_kg_m3,
-        decay_constant_per_m=decay_constant_per_m, rotation_rate_rad_s=rotation_rate_rad_s,
-        radius_m=radius_m, model=model), n_terms=n_terms, radius_m=radius_m, warn=warn)
+    return solution_for(
+        launch_correction(
+            speed_m_s,
+            elevation_rad,
+            bearing_rad,
+            latitude_rad,
+            drag_area_m2=drag_area_m2,
+            mass_kg=mass_kg,
+            surface_density_kg_m3=surface_density_kg_m3,
+            decay_constant_per_m=decay_constant_per_m,
+            rotation_rate_rad_s=rotation_rate_rad_s,
+            radius_m=radius_m,
+            model=model,
+        ),
+        n_terms=n_terms,
+        radius_m=radius_m,
+        warn=warn,
+    )
 
 
-def solution_for(launch: LaunchCorrection, *, n_terms: int = 3, radius_m=earth.RADIUS_M,
-                 warn: bool = True) -> mks.ModifiedKeplerSolution:
+def solution_for(
+    launch: LaunchCorrection, *, n_terms: int = 3, radius_m=earth.RADIUS_M, warn: bool = True
+) -> mks.ModifiedKeplerSolution:
     """The ECI MKS of an already corrected launch (:func:`eci_solution` without recomputing)."""
     return mks.ModifiedKeplerSolution(
-        launch.speed_m_s, launch.elevation_rad, launch.beta, launch.tau, n_terms=n_terms,
-        radius_m=radius_m, drive_scale=launch.drive_scale, decay_scale=launch.decay_scale,
-        warn=warn)
+        launch.speed_m_s,
+        launch.elevation_rad,
+        launch.beta,
+        launch.tau,
+        n_terms=n_terms,
+        radius_m=radius_m,
+        drive_scale=launch.drive_scale,
+        decay_scale=launch.decay_scale,
+        warn=warn,
+    )
 
 
 def site_surface_speed_km_s(site: str) -> float:
@@ -334,8 +480,9 @@ def site_surface_speed_km_s(site: str) -> float:
     return float(_norm(surface_velocity(get_site(site).latitude_rad))) / 1e3
 
 
-def inertial_positions(solution: mks.ModifiedKeplerSolution, launch: LaunchCorrection,
-                       latitude_rad: float, theta_rad) -> np.ndarray:
+def inertial_positions(
+    solution: mks.ModifiedKeplerSolution, launch: LaunchCorrection, latitude_rad: float, theta_rad
+) -> np.ndarray:
     """Positions (n, 3) of a single-launch ECI MKS at angular ranges ``theta_rad``: r(theta)
     in the plane of the launch point's radius and the corrected velocity's horizontal part,
     in the inertial frame of :func:`threedof.launch_frame` at longitude 0 and time zero."""

@@ -90,13 +90,38 @@ import pandas as pd
 from . import atmosphere, drag, earth, mlt, threedof
 from .sixdof import RigidBodyModel, simulate_6dof
 
-__all__ = ["COMPLEX_WEIGHT", "count_flops", "dop853_step_flops", "mks_apogee",
-           "mks_apogee_flops", "mlt_flops", "effort_table", "orders_of_magnitude", "best_time"]
+__all__ = [
+    "COMPLEX_WEIGHT",
+    "count_flops",
+    "dop853_step_flops",
+    "mks_apogee",
+    "mks_apogee_flops",
+    "mlt_flops",
+    "effort_table",
+    "orders_of_magnitude",
+    "best_time",
+]
 
 COMPLEX_WEIGHT = 4  # real operations per operation on complex numbers (module docstring)
 
-_TRANSCENDENTAL = {"exp", "log", "log10", "sin", "cos", "tan", "arcsin", "arccos", "arctan",
-                   "asin", "acos", "atan", "atan2", "arctan2", "power", "pow"}
+_TRANSCENDENTAL = {
+    "exp",
+    "log",
+    "log10",
+    "sin",
+    "cos",
+    "tan",
+    "arcsin",
+    "arccos",
+    "arctan",
+    "asin",
+    "acos",
+    "atan",
+    "atan2",
+    "arctan2",
+    "power",
+    "pow",
+}
 _SELECT = {"minimum", "maximum", "min", "max", "clip", "where", "abs", "fabs"}
 _LOOKUP = {"bisect_right", "bisect_left", "interp", "searchsorted"}
 
@@ -109,7 +134,7 @@ class _Counter(ast.NodeVisitor):
         self.flops = 0
         self.scale = weight
         self.trips = trips
-        self.names = names              # the function's module globals
+        self.names = names  # the function's module globals
         self.local_names = local_names  # its parameters and locals, which shadow them
         self.nested = {node.name: node for node in nested}  # functions defined inside it
 
@@ -134,10 +159,16 @@ class _Counter(ast.NodeVisitor):
         self.generic_visit(node)
 
     def visit_Call(self, node):
-        name = node.func.attr if isinstance(node.func, ast.Attribute) else getattr(
-            node.func, "id", "")
-        self.add(10 if name in _TRANSCENDENTAL or name in _LOOKUP
-                 else 1 if name in _SELECT or name in ("sqrt", "hypot") else 0)
+        name = (
+            node.func.attr if isinstance(node.func, ast.Attribute) else getattr(node.func, "id", "")
+        )
+        self.add(
+            10
+            if name in _TRANSCENDENTAL or name in _LOOKUP
+            else 1
+            if name in _SELECT or name in ("sqrt", "hypot")
+            else 0
+        )
         self.generic_visit(node)
         if isinstance(node.func, ast.Name) and node.func.id in self.nested:
             self.block(self.nested[node.func.id].body)  # inlined where it is called
@@ -161,16 +192,19 @@ class _Counter(ast.NodeVisitor):
                 self.visit(statement)
                 continue
             self.visit(statement.test)
-            rest = statements[index + 1:]
+            rest = statements[index + 1 :]
             body_ends, else_ends = _ends(statement.body), _ends(statement.orelse)
             if not (body_ends or else_ends):
-                self.flops += max(self.measure(lambda: self.block(statement.body)),
-                                  self.measure(lambda: self.block(statement.orelse)))
+                self.flops += max(
+                    self.measure(lambda: self.block(statement.body)),
+                    self.measure(lambda: self.block(statement.orelse)),
+                )
                 continue
             body = statement.body + ([] if body_ends else rest)
             other = statement.orelse + ([] if else_ends else rest)
-            self.flops += max(self.measure(lambda: self.block(body)),
-                              self.measure(lambda: self.block(other)))
+            self.flops += max(
+                self.measure(lambda: self.block(body)), self.measure(lambda: self.block(other))
+            )
             return
 
     def visit_If(self, node):  # an if that no statement list of block() holds
@@ -178,20 +212,28 @@ class _Counter(ast.NodeVisitor):
 
     def visit_IfExp(self, node):
         self.visit(node.test)
-        self.flops += max(self.measure(lambda: self.visit(node.body)),
-                          self.measure(lambda: self.visit(node.orelse)))
+        self.flops += max(
+            self.measure(lambda: self.visit(node.body)),
+            self.measure(lambda: self.visit(node.orelse)),
+        )
 
     def length(self, iterable) -> int:
         """Items of a loop's ``iterable``: given in ``trips``, or read from the code."""
         text = ast.unparse(iterable)
         if text in self.trips:
             return self.trips[text]
-        if (isinstance(iterable, ast.Call) and getattr(iterable.func, "id", "") == "range"
-                and not iterable.keywords
-                and all(isinstance(a, ast.Constant) for a in iterable.args)):
+        if (
+            isinstance(iterable, ast.Call)
+            and getattr(iterable.func, "id", "") == "range"
+            and not iterable.keywords
+            and all(isinstance(a, ast.Constant) for a in iterable.args)
+        ):
             return len(range(*(a.value for a in iterable.args)))
-        if (isinstance(iterable, ast.Name) and iterable.id not in self.local_names
-                and isinstance(self.names.get(iterable.id), (tuple, list))):
+        if (
+            isinstance(iterable, ast.Name)
+            and iterable.id not in self.local_names
+            and isinstance(self.names.get(iterable.id), (tuple, list))
+        ):
             return len(self.names[iterable.id])
         raise ValueError(f"a loop over {text!r} of unknown length: give it in trips")
 
@@ -234,14 +276,18 @@ def _ends(statements) -> bool:
         return False
     last = statements[-1]
     return isinstance(last, (ast.Return, ast.Raise, ast.Break, ast.Continue)) or (
-        isinstance(last, ast.If) and _ends(last.body) and _ends(last.orelse))
+        isinstance(last, ast.If) and _ends(last.body) and _ends(last.orelse)
+    )
 
 
 def _function_tree(function):
     tree = ast.parse(textwrap.dedent(inspect.getsource(function)))
     body = tree.body[0]
-    if body.body and isinstance(body.body[0], ast.Expr) and isinstance(
-            getattr(body.body[0], "value", None), ast.Constant):
+    if (
+        body.body
+        and isinstance(body.body[0], ast.Expr)
+        and isinstance(getattr(body.body[0], "value", None), ast.Constant)
+    ):
         body.body = body.body[1:]  # the docstring is not arithmetic
     return body
 
@@ -251,10 +297,16 @@ def _count(function, weight=1, trips=None, part=None) -> int:
     tree (its test and body: one iteration)."""
     tree = _function_tree(function)
     code = function.__code__
-    nested = [node for node in ast.walk(tree)
-              if isinstance(node, ast.FunctionDef) and node is not tree]
-    counter = _Counter(weight, dict(trips or {}), function.__globals__,
-                       set(code.co_varnames) | set(code.co_cellvars), nested)
+    nested = [
+        node for node in ast.walk(tree) if isinstance(node, ast.FunctionDef) and node is not tree
+    ]
+    counter = _Counter(
+        weight,
+        dict(trips or {}),
+        function.__globals__,
+        set(code.co_varnames) | set(code.co_cellvars),
+        nested,
+    )
     if part is None:
         counter.block(tree.body)
     else:
@@ -282,9 +334,17 @@ def dop853_step_flops(n_states: int) -> int:
     return per_state * n_states + 30
 
 
-def mks_apogee(speed_m_s, elevation_rad, cd0, mass_kg, area_m2,
-               k_per_m=atmosphere.TEXT_DECAY_CONSTANT_PER_M, rho0=1.225, r0=earth.RADIUS_M,
-               gm=earth.GM_M3_S2):
+def mks_apogee(
+    speed_m_s,
+    elevation_rad,
+    cd0,
+    mass_kg,
+    area_m2,
+    k_per_m=atmosphere.TEXT_DECAY_CONSTANT_PER_M,
+    rho0=1.225,
+    r0=earth.RADIUS_M,
+    gm=earth.GM_M3_S2,
+):
     """Apogee altitude (m) of the three-term MKS in straight-line code (eqs 3.22, 3.27, 6.13,
     6.14, 6.6-6.10, 6.4, 6.5), the operations Fig 4.7 counts. Same result as
     :class:`harp_analysis.mks.ModifiedKeplerSolution` (tests/test_effort.py)."""
@@ -318,19 +378,29 @@ def _mlt_costs() -> dict:
     m, complex_ = mlt, COMPLEX_WEIGHT
     average = {"zip(a, b)": len(m.SegmentCoefficients._fields), "zip(x, y)": 3}
     functions = [  # (function, weight, trips)
-        (m.segment_coefficients, 1, None), (m._rotation, 1, None), (m._apply, 1, _ROWS),
-        (m._apply_transpose, 1, None), (m._gravity, 1, None), (RigidBodyModel.air, 1, None),
+        (m.segment_coefficients, 1, None),
+        (m._rotation, 1, None),
+        (m._apply, 1, _ROWS),
+        (m._apply_transpose, 1, None),
+        (m._gravity, 1, None),
+        (RigidBodyModel.air, 1, None),
         (RigidBodyModel.coefficients, 1, _COEFFICIENTS),
         (atmosphere._two_segment_density, 1, None),
         (atmosphere._two_segment_speed_of_sound, 1, None),
-        (m.propagate_segment, 1, None), (m._scalar_solution, 1, None), (m._phi, complex_, None),
+        (m.propagate_segment, 1, None),
+        (m._scalar_solution, 1, None),
+        (m._phi, complex_, None),
         (m._epicyclic_solution, complex_, None),
         (m._solve_segment, 1, {"zip(rows0, rows1)": 3, "zip(r0, r1)": 3}),
-        (m._average, 1, average), (m._Segment.duration_s, 1, None), (m._altitude, 1, None),
+        (m._average, 1, average),
+        (m._Segment.duration_s, 1, None),
+        (m._altitude, 1, None),
         (m._radial_velocity, 1, None),
     ]
-    return {function.__code__: count_flops(function, weight=weight, trips=trips)
-            for function, weight, trips in functions}
+    return {
+        function.__code__: count_flops(function, weight=weight, trips=trips)
+        for function, weight, trips in functions
+    }
 
 
 def _segment_loop(tree) -> tuple:
@@ -376,8 +446,10 @@ def _mlt_run(projectile, **flight) -> tuple[Counter, pd.DataFrame]:
 def _mlt_count(projectile, **flight) -> tuple[int, pd.DataFrame]:
     calls, table = _mlt_run(projectile, **flight)
     if table.attrs["atmosphere"] != "two_segment":
-        raise ValueError("MLT's operations are counted in the two-segment atmosphere only "
-                         "(its density and speed of sound are the counted kernels)")
+        raise ValueError(
+            "MLT's operations are counted in the two-segment atmosphere only "
+            "(its density and speed of sound are the counted kernels)"
+        )
     loop = _count(mlt.simulate_mlt, part=_segment_loop)
     flops = sum(calls[code] * cost for code, cost in _mlt_costs().items())
     return flops + table.attrs["n_segments"] * loop, table
@@ -413,8 +485,11 @@ def effort_table(elevation_deg: float = 50.0) -> pd.DataFrame:
     from .projectiles import HP
     from .scenarios import REFERENCE_CROSSWIND_M_S
 
-    six_flight = dict(elevation_deg=elevation_deg, crosswind_m_s=REFERENCE_CROSSWIND_M_S,
-                      density_altitude="spherical")
+    six_flight = dict(
+        elevation_deg=elevation_deg,
+        crosswind_m_s=REFERENCE_CROSSWIND_M_S,
+        density_altitude="spherical",
+    )
     three_flight = dict(elevation_deg=elevation_deg, cross_wind_m_s=REFERENCE_CROSSWIND_M_S)
     six = simulate_6dof(HP, **six_flight)
     three = threedof.simulate_3dof(HP, **three_flight)
@@ -423,11 +498,16 @@ def effort_table(elevation_deg: float = 50.0) -> pd.DataFrame:
     # per accepted step for the interpolant its events are found on.
     six_attempts = (six.attrs["n_rhs"] - 2 - 3 * six.attrs["n_steps"]) / 12
     six_flops = six.attrs["n_rhs"] * six_rhs + six_attempts * dop853_step_flops(12)
-    three_flops = (three.attrs["rhs_evaluations"] * count_flops(*_threedof_functions())
-                   + three.attrs["rhs_evaluations"] / 12 * dop853_step_flops(6))
-    mlt_flight = dict(elevation_deg=elevation_deg, crosswind_m_s=REFERENCE_CROSSWIND_M_S,
-                      density_altitude="spherical", segment_length_m=mlt.SEGMENT_LENGTH_M,
-                      coefficients_at="middle")
+    three_flops = three.attrs["rhs_evaluations"] * count_flops(
+        *_threedof_functions()
+    ) + three.attrs["rhs_evaluations"] / 12 * dop853_step_flops(6)
+    mlt_flight = dict(
+        elevation_deg=elevation_deg,
+        crosswind_m_s=REFERENCE_CROSSWIND_M_S,
+        density_altitude="spherical",
+        segment_length_m=mlt.SEGMENT_LENGTH_M,
+        coefficients_at="middle",
+    )
     linear_flops, linear = _mlt_count(HP, **mlt_flight)
     elevation = math.radians(elevation_deg)
     sound = float(atmosphere.get_atmosphere("two_segment").speed_of_sound(0.0))
@@ -436,17 +516,36 @@ def effort_table(elevation_deg: float = 50.0) -> pd.DataFrame:
     many = np.full(1_000_000, elevation)
     lookup = 14  # Cd0 from the M829 table: one lookup and the linear interpolation
     rows = [
-        ("6DOF", six_flops, best_time(lambda: simulate_6dof(HP, **six_flight), repeat=2),
-         six.attrs["apogee_altitude_m"]),
-        ("3DOF", three_flops, best_time(lambda: threedof.simulate_3dof(HP, **three_flight)),
-         three.attrs["apogee_altitude_m"]),
-        ("MLT", linear_flops, best_time(lambda: mlt.simulate_mlt(HP, **mlt_flight)),
-         linear.attrs["apogee_altitude_m"]),
-        ("MKS (3 terms)", mks_apogee_flops() + lookup,
-         best_time(lambda: mks_apogee(*inputs), number=1000), float(mks_apogee(*inputs))),
-        ("MKS, a million launches at once (per launch)", mks_apogee_flops() + lookup,
-         best_time(lambda: mks_apogee(inputs[0], many, *inputs[2:]), repeat=3) / many.size,
-         float(mks_apogee(*inputs))),
+        (
+            "6DOF",
+            six_flops,
+            best_time(lambda: simulate_6dof(HP, **six_flight), repeat=2),
+            six.attrs["apogee_altitude_m"],
+        ),
+        (
+            "3DOF",
+            three_flops,
+            best_time(lambda: threedof.simulate_3dof(HP, **three_flight)),
+            three.attrs["apogee_altitude_m"],
+        ),
+        (
+            "MLT",
+            linear_flops,
+            best_time(lambda: mlt.simulate_mlt(HP, **mlt_flight)),
+            linear.attrs["apogee_altitude_m"],
+        ),
+        (
+            "MKS (3 terms)",
+            mks_apogee_flops() + lookup,
+            best_time(lambda: mks_apogee(*inputs), number=1000),
+            float(mks_apogee(*inputs)),
+        ),
+        (
+            "MKS, a million launches at once (per launch)",
+            mks_apogee_flops() + lookup,
+            best_time(lambda: mks_apogee(inputs[0], many, *inputs[2:]), repeat=3) / many.size,
+            float(mks_apogee(*inputs)),
+        ),
     ]
     table = pd.DataFrame(rows, columns=["method", "flops", "seconds", "apogee_m"])
     table["apogee_difference_m"] = (table.apogee_m - six.attrs["apogee_altitude_m"]).abs()
@@ -455,15 +554,27 @@ def effort_table(elevation_deg: float = 50.0) -> pd.DataFrame:
 
 def _threedof_functions():
     dynamics = threedof._Dynamics
-    return (dynamics.acceleration, dynamics.forces, dynamics.air_velocity,
-            atmosphere._two_segment_density, atmosphere._two_segment_speed_of_sound,
-            drag.TabulatedDragLaw.evaluate)
+    return (
+        dynamics.acceleration,
+        dynamics.forces,
+        dynamics.air_velocity,
+        atmosphere._two_segment_density,
+        atmosphere._two_segment_speed_of_sound,
+        drag.TabulatedDragLaw.evaluate,
+    )
 
 
 def _sixdof_functions():
     from .sixdof import RigidBodyModel as M
-    return (M.no_roll, M.aero_no_roll, M.air, M.coefficients,
-            atmosphere._two_segment_density, atmosphere._two_segment_speed_of_sound)
+
+    return (
+        M.no_roll,
+        M.aero_no_roll,
+        M.air,
+        M.coefficients,
+        atmosphere._two_segment_density,
+        atmosphere._two_segment_speed_of_sound,
+    )
 
 
 def orders_of_magnitude(method: str, than: str = "MKS (3 terms)") -> float:

@@ -42,31 +42,58 @@ from .harp_data import FOOT_M, load_appendix, load_muzzle_speeds
 from .sites import get_site
 from .validation import check_choice
 
-__all__ = ["SPEED_STEP_FT_S", "PRINT_HALF_UNITS", "recover_muzzle_speeds", "appendix_rounds",
-           "launch_corrections", "drag_area_m2", "fit_drag_area_to_errors", "beta_column_drag_area",
-           "drag_area_table", "speed_of_sound", "air_temperature_k", "predicted_apogees", "appendix_columns",
-           "column_agreement", "residual_statistic", "residual_table", "error_column_misfit_km",
-           "drag_transfer_gap"]
+__all__ = [
+    "SPEED_STEP_FT_S",
+    "PRINT_HALF_UNITS",
+    "recover_muzzle_speeds",
+    "appendix_rounds",
+    "launch_corrections",
+    "drag_area_m2",
+    "fit_drag_area_to_errors",
+    "beta_column_drag_area",
+    "drag_area_table",
+    "speed_of_sound",
+    "air_temperature_k",
+    "predicted_apogees",
+    "appendix_columns",
+    "column_agreement",
+    "residual_statistic",
+    "residual_table",
+    "error_column_misfit_km",
+    "drag_transfer_gap",
+]
 
 #: The resolution of the HARP muzzle-speed records (ft/s).
 SPEED_STEP_FT_S = 10.0
 #: Half a unit of the last printed digit of each derived column, in the loaded SI units.
 PRINT_HALF_UNITS = {
-    "mach": 0.005, "misalignment_angle_rad": math.radians(0.005), "tangent_speed_m_s": 5.0,
-    "corrected_elevation_rad": math.radians(0.005), "corrected_speed_m_s": 5.0,
-    "corrected_azimuth_rad": math.radians(0.005), "beta": 0.005,
-    "initial_angular_momentum_m2_s": 5e3, "apogee_error_m": 5.0, "delta_apogee_m": 5.0,
+    "mach": 0.005,
+    "misalignment_angle_rad": math.radians(0.005),
+    "tangent_speed_m_s": 5.0,
+    "corrected_elevation_rad": math.radians(0.005),
+    "corrected_speed_m_s": 5.0,
+    "corrected_azimuth_rad": math.radians(0.005),
+    "beta": 0.005,
+    "initial_angular_momentum_m2_s": 5e3,
+    "apogee_error_m": 5.0,
+    "delta_apogee_m": 5.0,
 }
-_GAS = 1.4 * 287.05   # gamma R of air (J/(kg K)), for the temperature behind a speed of sound
+_GAS = 1.4 * 287.05  # gamma R of air (J/(kg K)), for the temperature behind a speed of sound
 _TOLERANCE_KM = 0.02  # the Cd0 A interval of Appendix E's Error column: every round this close
 
 
 def _site_launch(site, speed_m_s, mass_kg, drag_area, model):
     launch_site = get_site(site)
     return eci.launch_correction(
-        speed_m_s, launch_site.elevation_rad, launch_site.gun_bearing_rad,
-        launch_site.latitude_rad, drag_area_m2=drag_area, mass_kg=mass_kg,
-        surface_density_kg_m3=launch_site.surface_density_kg_m3, model=model)
+        speed_m_s,
+        launch_site.elevation_rad,
+        launch_site.gun_bearing_rad,
+        launch_site.latitude_rad,
+        drag_area_m2=drag_area,
+        mass_kg=mass_kg,
+        surface_density_kg_m3=launch_site.surface_density_kg_m3,
+        model=model,
+    )
 
 
 def _distinct(table):
@@ -94,10 +121,12 @@ def recover_muzzle_speeds(site: str) -> pd.DataFrame:
         launch = _site_launch(site, candidates_ft_s * FOOT_M, row.mass_kg, 0.0, eci.CONSISTENT)
         misfit = np.abs(launch.misalignment_rad - row.misalignment_angle_rad) / half_unit
         order = np.argsort(misfit)
-        rows.append((row.round_number, candidates_ft_s[order[0]], misfit[order[0]],
-                     misfit[order[1]]))
-    frame = pd.DataFrame(rows, columns=["round_number", "speed_ft_s", "mu_misfit",
-                                        "runner_up_misfit"])
+        rows.append(
+            (row.round_number, candidates_ft_s[order[0]], misfit[order[0]], misfit[order[1]])
+        )
+    frame = pd.DataFrame(
+        rows, columns=["round_number", "speed_ft_s", "mu_misfit", "runner_up_misfit"]
+    )
     frame.insert(2, "muzzle_speed_m_s", frame.speed_ft_s * FOOT_M)
     return frame
 
@@ -110,8 +139,10 @@ def _appendix_rounds(site: str) -> pd.DataFrame:
     missing = sorted(set(table.round_number) - set(exact))
     if missing:
         raise ValueError(f"no recovered muzzle speed for {site} rounds {missing}")
-    return table.assign(printed_muzzle_speed_m_s=table.muzzle_speed_m_s,
-                        muzzle_speed_m_s=table.round_number.map(exact))
+    return table.assign(
+        printed_muzzle_speed_m_s=table.muzzle_speed_m_s,
+        muzzle_speed_m_s=table.round_number.map(exact),
+    )
 
 
 def appendix_rounds(site: str) -> pd.DataFrame:
@@ -121,20 +152,23 @@ def appendix_rounds(site: str) -> pd.DataFrame:
     return _appendix_rounds(get_site(site).name.lower()).copy()
 
 
-def launch_corrections(site: str, model: str | eci.EciModel = "dissertation",
-                       drag_area: float | None = None) -> eci.LaunchCorrection:
+def launch_corrections(
+    site: str, model: str | eci.EciModel = "dissertation", drag_area: float | None = None
+) -> eci.LaunchCorrection:
     """The launch correction of every printed row of ``site`` under ``model`` with its own
     Cd0 A (or ``drag_area``)."""
     model = eci.get_model(model)
     rounds = appendix_rounds(site)
     area = drag_area_m2(model.name) if drag_area is None else drag_area
-    return _site_launch(site, rounds.muzzle_speed_m_s.to_numpy(), rounds.mass_kg.to_numpy(),
-                        area, model)
+    return _site_launch(
+        site, rounds.muzzle_speed_m_s.to_numpy(), rounds.mass_kg.to_numpy(), area, model
+    )
 
 
 # --- drag area -----------------------------------------------------------------------------------
-def beta_column_drag_area(site: str, model: str | eci.EciModel = "dissertation"
-                          ) -> tuple[float, float, float]:
+def beta_column_drag_area(
+    site: str, model: str | eci.EciModel = "dissertation"
+) -> tuple[float, float, float]:
     """Cd0 A (m^2) from ``site``'s printed Beta column read as ``model`` reads it: (central,
     lowest, highest value every printed Beta allows). The central value is the middle of that
     interval, so every printed Beta rounds back; when no single Cd0 A does, it is the least-squares
@@ -145,8 +179,12 @@ def beta_column_drag_area(site: str, model: str | eci.EciModel = "dissertation"
 
     def beta_per_area(area):
         """beta column / Cd0 A: constant, except through V_tangent's turn of the elevation."""
-        return _site_launch(site, rounds.muzzle_speed_m_s.to_numpy(), rounds.mass_kg.to_numpy(),
-                            area, model).beta_column / area
+        return (
+            _site_launch(
+                site, rounds.muzzle_speed_m_s.to_numpy(), rounds.mass_kg.to_numpy(), area, model
+            ).beta_column
+            / area
+        )
 
     def solve(target):  # the Cd0 A that gives each row ``target``, by fixed-point iteration
         area = target / beta_per_area(np.full_like(target, 2.8e-3))
@@ -160,8 +198,12 @@ def beta_column_drag_area(site: str, model: str | eci.EciModel = "dissertation"
     low, high = float(np.max(solve(printed - half))), float(np.min(solve(printed + half)))
     if low <= high:
         return (low + high) / 2, low, high
-    best = minimize_scalar(lambda a: np.sum((a * beta_per_area(a) - printed) ** 2),
-                           bounds=(1e-4, 1e-2), method="bounded", options={"xatol": 1e-12}).x
+    best = minimize_scalar(
+        lambda a: np.sum((a * beta_per_area(a) - printed) ** 2),
+        bounds=(1e-4, 1e-2),
+        method="bounded",
+        options={"xatol": 1e-12},
+    ).x
     return float(best), math.nan, math.nan
 
 
@@ -174,9 +216,12 @@ def _yuma_error_misfit_m(drag_area):
 def fit_drag_area_to_errors() -> tuple[float, float, float]:
     """Cd0 A (m^2) that Appendix E's Error column implies through the dissertation model:
     (least squares, lowest, highest value keeping every Yuma round within 0.02 km)."""
-    best = minimize_scalar(lambda area: np.sum(_yuma_error_misfit_m(area) ** 2),
-                           bounds=(2.0e-3, 4.0e-3), method="bounded",
-                           options={"xatol": 1e-11}).x
+    best = minimize_scalar(
+        lambda area: np.sum(_yuma_error_misfit_m(area) ** 2),
+        bounds=(2.0e-3, 4.0e-3),
+        method="bounded",
+        options={"xatol": 1e-11},
+    ).x
 
     def margin(area):
         return np.max(np.abs(_yuma_error_misfit_m(area))) - _TOLERANCE_KM * 1e3
@@ -184,8 +229,11 @@ def fit_drag_area_to_errors() -> tuple[float, float, float]:
     if margin(best) > 0:
         return float(best), math.nan, math.nan
     step = 1e-5 * best
-    return (float(best), brentq(margin, best - 100 * step, best, xtol=1e-12),
-            brentq(margin, best, best + 100 * step, xtol=1e-12))
+    return (
+        float(best),
+        brentq(margin, best - 100 * step, best, xtol=1e-12),
+        brentq(margin, best, best + 100 * step, xtol=1e-12),
+    )
 
 
 @cache
@@ -235,29 +283,36 @@ def _predicted(site, model, drag_area):
     table = appendix_rounds(site)
     launch = launch_corrections(site, model, drag_area)
     predicted = np.atleast_1d(eci.solution_for(launch, warn=False).apogee_altitude("eq_6_4"))
-    frame = pd.DataFrame({"round_number": table.round_number,
-                          "measured_apogee_m": table.apogee_m,
-                          "predicted_apogee_m": predicted,
-                          "residual_m": table.apogee_m - predicted,
-                          "duplicate_of_earlier_row": table.duplicate_of_earlier_row})
+    frame = pd.DataFrame(
+        {
+            "round_number": table.round_number,
+            "measured_apogee_m": table.apogee_m,
+            "predicted_apogee_m": predicted,
+            "residual_m": table.apogee_m - predicted,
+            "duplicate_of_earlier_row": table.duplicate_of_earlier_row,
+        }
+    )
     if "apogee_error_m" in table:
         frame["printed_error_m"] = table.apogee_error_m
     return frame
 
 
-def predicted_apogees(site: str, model: str = "dissertation",
-                      drag_area: float | None = None) -> pd.DataFrame:
+def predicted_apogees(
+    site: str, model: str = "dissertation", drag_area: float | None = None
+) -> pd.DataFrame:
     """Measured and predicted apogee (eqs 6.4-6.5) of every printed row of ``site``'s appendix
     (the duplicated Barbados round 181 kept and flagged), residual = measured - predicted, and
     for Yuma the printed Error. ``model`` names one of :data:`eci.MODELS`; ``drag_area`` (Cd0 A,
     m^2) defaults to the model's own (:func:`drag_area_m2`). A copy."""
     name = eci.get_model(model).name
-    return _predicted(get_site(site).name.lower(), name,
-                      None if drag_area is None else float(drag_area)).copy()
+    return _predicted(
+        get_site(site).name.lower(), name, None if drag_area is None else float(drag_area)
+    ).copy()
 
 
-def residual_statistic(site: str, statistic: str = "mean", include_duplicate: bool = True,
-                       model: str = "dissertation") -> float:
+def residual_statistic(
+    site: str, statistic: str = "mean", include_duplicate: bool = True, model: str = "dissertation"
+) -> float:
     """Mean, its magnitude ("abs_mean") or sample standard deviation ("std") in km of the
     apogee residuals of ``site`` under ``model``."""
     check_choice(statistic, "statistic", ("mean", "abs_mean", "std"))
@@ -278,11 +333,16 @@ def residual_table() -> pd.DataFrame:
     for model in eci.MODELS:
         for site in ("barbados", "yuma"):
             for include in (True, False):
-                rows.append({"model": model, "site": site,
-                             "rows": "all printed" if include else "distinct rounds",
-                             "mean_km": residual_statistic(site, "mean", include, model),
-                             "std_km": residual_statistic(site, "std", include, model),
-                             "drag_area_m2": drag_area_m2(model)})
+                rows.append(
+                    {
+                        "model": model,
+                        "site": site,
+                        "rows": "all printed" if include else "distinct rounds",
+                        "mean_km": residual_statistic(site, "mean", include, model),
+                        "std_km": residual_statistic(site, "std", include, model),
+                        "drag_area_m2": drag_area_m2(model),
+                    }
+                )
     return pd.DataFrame(rows)
 
 
@@ -321,7 +381,8 @@ def appendix_columns(site: str, model: str = "dissertation") -> pd.DataFrame:
         "corrected_azimuth_rad": launch.corrected_azimuth_rad[distinct],
         "beta": launch.beta_column[distinct],
         "initial_angular_momentum_m2_s": eci.initial_angular_momentum(
-            launch.corrected_speed_m_s, launch.corrected_elevation_rad)[distinct],
+            launch.corrected_speed_m_s, launch.corrected_elevation_rad
+        )[distinct],
     }
     if "apogee_error_m" in rounds:
         residual = predicted_apogees(site, model).residual_m.to_numpy()[distinct]
@@ -339,7 +400,10 @@ def column_agreement(site: str, model: str = "dissertation") -> pd.DataFrame:
     for column in computed.columns.drop("round_number"):
         misfit = np.abs(computed[column] - printed[column]).to_numpy() / PRINT_HALF_UNITS[column]
         worst = int(np.argmax(misfit))
-        rows[column] = {"worst_half_units": misfit[worst],
-                        "worst_round": int(printed.round_number[worst]),
-                        "rounds_within": int(np.sum(misfit <= 1.0)), "rounds": len(misfit)}
+        rows[column] = {
+            "worst_half_units": misfit[worst],
+            "worst_round": int(printed.round_number[worst]),
+            "rounds_within": int(np.sum(misfit <= 1.0)),
+            "rounds": len(misfit),
+        }
     return pd.DataFrame(rows).T

@@ -16,8 +16,15 @@ import pandas as pd
 from .paths import HARP_DATA_DIR
 from .sites import get_site
 
-__all__ = ["HarpDataError", "load_appendix", "load_barbados", "load_yuma", "load_muzzle_speeds",
-           "verify_checksums", "MUZZLE_SPEEDS_FILE"]
+__all__ = [
+    "HarpDataError",
+    "load_appendix",
+    "load_barbados",
+    "load_yuma",
+    "load_muzzle_speeds",
+    "verify_checksums",
+    "MUZZLE_SPEEDS_FILE",
+]
 
 #: Derived data beside the transcription: each round's exact muzzle speed (data/harp/README.md).
 MUZZLE_SPEEDS_FILE = "muzzle_speeds.tsv"
@@ -60,15 +67,39 @@ _COLUMNS = {
 _LAYOUTS = {
     "barbados": (
         "appendix_d_barbados.tsv",
-        ("round", "apogee_km", "mass_kg", "vo_km_s", "mach", "mu_deg", "v_tangent_km_s",
-         "corrected_elevation_deg", "corrected_velocity_km_s", "corrected_azimuth_deg", "beta",
-         "li_km2_s"),
+        (
+            "round",
+            "apogee_km",
+            "mass_kg",
+            "vo_km_s",
+            "mach",
+            "mu_deg",
+            "v_tangent_km_s",
+            "corrected_elevation_deg",
+            "corrected_velocity_km_s",
+            "corrected_azimuth_deg",
+            "beta",
+            "li_km2_s",
+        ),
     ),
     "yuma": (
         "appendix_e_yuma.tsv",
-        ("round", "error_km", "apogee_km", "mass_kg", "vo_km_s", "mach", "mu_deg", "beta",
-         "v_tangent_km_s", "corrected_elevation_deg", "corrected_velocity_km_s",
-         "corrected_azimuth_deg", "li_km2_s", "delta_apogee_km"),
+        (
+            "round",
+            "error_km",
+            "apogee_km",
+            "mass_kg",
+            "vo_km_s",
+            "mach",
+            "mu_deg",
+            "beta",
+            "v_tangent_km_s",
+            "corrected_elevation_deg",
+            "corrected_velocity_km_s",
+            "corrected_azimuth_deg",
+            "li_km2_s",
+            "delta_apogee_km",
+        ),
     ),
 }
 
@@ -93,7 +124,9 @@ def _read_table(path: Path, columns: tuple[str, ...]) -> tuple[list[list[float |
         where = f"{path} line {number}"
         if not header_seen:
             if tuple(fields) != columns:
-                raise HarpDataError(f"{where}: header {fields} does not match expected {list(columns)}")
+                raise HarpDataError(
+                    f"{where}: header {fields} does not match expected {list(columns)}"
+                )
             header_seen = True
             continue
         if len(fields) < len(columns):
@@ -111,7 +144,9 @@ def _read_table(path: Path, columns: tuple[str, ...]) -> tuple[list[list[float |
             try:
                 row.append(_parse_field(text, column))
             except ValueError:
-                raise HarpDataError(f"{where}, column {column!r}: could not parse {text!r}") from None
+                raise HarpDataError(
+                    f"{where}, column {column!r}: could not parse {text!r}"
+                ) from None
         rows.append(row)
         line_numbers.append(number)
     if not header_seen:
@@ -160,10 +195,14 @@ def load_muzzle_speeds(site: str, path: str | Path | None = None) -> pd.DataFram
         fields = line.split("\t")
         where = f"{path} line {number}"
         if len(fields) != len(_SPEED_COLUMNS):
-            raise HarpDataError(f"{where}: expected {len(_SPEED_COLUMNS)} fields, got {len(fields)}")
+            raise HarpDataError(
+                f"{where}: expected {len(_SPEED_COLUMNS)} fields, got {len(fields)}"
+            )
         if not numbers and not rows:
             if tuple(fields) != _SPEED_COLUMNS:
-                raise HarpDataError(f"{where}: header {fields} does not match {list(_SPEED_COLUMNS)}")
+                raise HarpDataError(
+                    f"{where}: header {fields} does not match {list(_SPEED_COLUMNS)}"
+                )
             numbers.append(number)
             continue
         try:
@@ -190,7 +229,9 @@ def verify_checksums(directory: str | Path = HARP_DATA_DIR) -> list[str]:
         try:
             actual = hashlib.sha256((directory / name).read_bytes()).hexdigest()
         except FileNotFoundError:
-            raise HarpDataError(f"{name}: listed in SHA256SUMS but missing from {directory}") from None
+            raise HarpDataError(
+                f"{name}: listed in SHA256SUMS but missing from {directory}"
+            ) from None
         if actual != expected:
             raise HarpDataError(f"{name}: SHA-256 {actual} does not match SHA256SUMS ({expected})")
         names.append(name)

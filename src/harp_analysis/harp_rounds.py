@@ -8,7 +8,8 @@ Cd0 A of :func:`harp.martlet_drag_area_m2` and the model of :func:`harp.predicte
 angular range theta is inertial: it lies in the plane of the launch "up" and the corrected
 inertial azimuth (~95 deg at Barbados for the 109 deg gun). The inertial position r(theta)
 (cos theta up + sin theta d_azimuth) at time t(theta) is turned into the Earth-fixed frame by a
-rotation of -omega t about the polar axis, and its ranges are measured from the launch site on the Earth's surface.
+rotation of -omega t about the polar axis, and its ranges are measured from the launch site on
+the Earth's surface.
 
 Range "as measured by the radar". Ch. 6 E: "the range displayed is the relative range between
 the original launch location and the current position of the projectile as is measured by the
@@ -49,8 +50,15 @@ from .threedof import launch_frame
 from .trajectory import surface_ranges
 from .validation import check_range, finite_scalar
 
-__all__ = ["RADAR_DIR", "RADAR_NAMES", "TEXT_SPLASH_RANGES_KM", "round_trajectory", "splash_range_km",
-           "load_radar_track", "draw_round_figure"]
+__all__ = [
+    "RADAR_DIR",
+    "RADAR_NAMES",
+    "TEXT_SPLASH_RANGES_KM",
+    "round_trajectory",
+    "splash_range_km",
+    "load_radar_track",
+    "draw_round_figure",
+]
 
 RADAR_DIR = HARP_DATA_DIR / "radar"
 #: Ch. 6 B: the MPS-19 at the gun, the M-33 (assumed on Trinidad).
@@ -71,8 +79,9 @@ def _round_row(site, round_number):
     return launch_site, number, rows.iloc[0]
 
 
-def round_trajectory(site: str, round_number: int, n_points: int = 400, *,
-                     model: str = "dissertation") -> pd.DataFrame:
+def round_trajectory(
+    site: str, round_number: int, n_points: int = 400, *, model: str = "dissertation"
+) -> pd.DataFrame:
     """The ECI MKS of ``round_number`` fired from ``site``, launch to impact at ``n_points``
     equal steps of angular range: ``time_s``, ``altitude_m``, ``inertial_range_m`` (R theta),
     and on the rotating Earth ``ground_range_m`` (surface arc from the gun), ``downrange_m`` and
@@ -83,9 +92,15 @@ def round_trajectory(site: str, round_number: int, n_points: int = 400, *,
     n_points = int(check_range(finite_scalar(n_points, "n_points"), "n_points", low=2))
     launch_site, _, row = _round_row(site, round_number)
     correction = eci.launch_correction(
-        row.muzzle_speed_m_s, launch_site.elevation_rad, launch_site.gun_bearing_rad,
-        launch_site.latitude_rad, drag_area_m2=harp.drag_area_m2(model), mass_kg=row.mass_kg,
-        surface_density_kg_m3=launch_site.surface_density_kg_m3, model=model)
+        row.muzzle_speed_m_s,
+        launch_site.elevation_rad,
+        launch_site.gun_bearing_rad,
+        launch_site.latitude_rad,
+        drag_area_m2=harp.drag_area_m2(model),
+        mass_kg=row.mass_kg,
+        surface_density_kg_m3=launch_site.surface_density_kg_m3,
+        model=model,
+    )
     solution = eci.solution_for(correction, warn=False)
     theta = np.linspace(0.0, solution.impact_angle, n_points)
     sample = solution.sample(theta)
@@ -94,18 +109,31 @@ def round_trajectory(site: str, round_number: int, n_points: int = 400, *,
     inertial = eci.inertial_positions(solution, correction, launch_site.latitude_rad, theta)
     turn = -earth.ROTATION_RATE_RAD_S * sample["time_s"]
     cos, sin = np.cos(turn), np.sin(turn)
-    fixed = np.column_stack([cos * inertial[:, 0] - sin * inertial[:, 1],
-                             sin * inertial[:, 0] + cos * inertial[:, 1], inertial[:, 2]])
+    fixed = np.column_stack(
+        [
+            cos * inertial[:, 0] - sin * inertial[:, 1],
+            sin * inertial[:, 0] + cos * inertial[:, 1],
+            inertial[:, 2],
+        ]
+    )
     downrange, cross_range = surface_ranges(fixed, up, along_gun)
     ground = earth.RADIUS_M * np.arccos(np.clip(fixed @ up / radius, -1.0, 1.0))
-    return pd.DataFrame({"time_s": sample["time_s"], "altitude_m": sample["altitude_m"],
-                         "inertial_range_m": sample["ground_range_m"], "ground_range_m": ground,
-                         "downrange_m": downrange, "cross_range_m": cross_range,
-                         "radar_range_m": ground})
+    return pd.DataFrame(
+        {
+            "time_s": sample["time_s"],
+            "altitude_m": sample["altitude_m"],
+            "inertial_range_m": sample["ground_range_m"],
+            "ground_range_m": ground,
+            "downrange_m": downrange,
+            "cross_range_m": cross_range,
+            "radar_range_m": ground,
+        }
+    )
 
 
-def splash_range_km(site: str = "barbados", round_number: int = 181,
-                    model: str = "dissertation") -> float:
+def splash_range_km(
+    site: str = "barbados", round_number: int = 181, model: str = "dissertation"
+) -> float:
     """Ground range (km) on the rotating Earth at the MKS impact of ``round_number`` under
     ``model``; for Barbados round 181 the text gives 39.6 km (MKS) and 41.1 km (observed
     splash); module docstring."""
@@ -143,13 +171,17 @@ def _read_radar(path: Path) -> pd.DataFrame:
         where = f"{path} line {number}"
         if not header_seen:
             if tuple(f.strip() for f in fields) != _RADAR_HEADER:
-                raise HarpDataError(f"{where}: header {fields} does not match {list(_RADAR_HEADER)}")
+                raise HarpDataError(
+                    f"{where}: header {fields} does not match {list(_RADAR_HEADER)}"
+                )
             header_seen = True
             continue
         if len(fields) != len(_RADAR_HEADER):
             column = _RADAR_HEADER[min(len(fields), len(_RADAR_HEADER) - 1)]
-            raise HarpDataError(f"{where}, column {column!r}: expected {len(_RADAR_HEADER)} "
-                                f"fields, got {len(fields)}")
+            raise HarpDataError(
+                f"{where}, column {column!r}: expected {len(_RADAR_HEADER)} "
+                f"fields, got {len(fields)}"
+            )
         rows.append([_radar_field(t, c, where) for c, t in zip(_RADAR_HEADER, fields)])
         lines.append(number)
     if not header_seen:
@@ -157,10 +189,15 @@ def _read_radar(path: Path) -> pd.DataFrame:
     if not any(p.lower().startswith("source:") for p in provenance):
         raise HarpDataError(f"{path}: no '# source:' provenance comment")
     frame = pd.DataFrame(rows, columns=list(_RADAR_HEADER))
-    frame = pd.DataFrame({"time_s": frame.time_s.astype(float),
-                          "altitude_m": frame.altitude_km.astype(float) * _KM,
-                          "range_m": frame.range_km.astype(float) * _KM,
-                          "radar": frame.radar, "source_line": lines})
+    frame = pd.DataFrame(
+        {
+            "time_s": frame.time_s.astype(float),
+            "altitude_m": frame.altitude_km.astype(float) * _KM,
+            "range_m": frame.range_km.astype(float) * _KM,
+            "radar": frame.radar,
+            "source_line": lines,
+        }
+    )
     frame.attrs["provenance"] = "\n".join(provenance)
     return frame
 
@@ -187,25 +224,45 @@ def draw_round_figure(site: str, round_number: int):
     by_range.plot(trajectory.radar_range_m / _KM, altitude_km, label="ECI Modified Kepler")
     if radar is None:
         fig.subplots_adjust(bottom=0.28)
-        fig.text(0.5, 0.03, f"radar data for round {number} are not in the dissertation\n"
-                 "(see data/harp/radar/README.md)", ha="center", va="bottom", color="darkred",
-                 fontsize=11, bbox=dict(facecolor="white", edgecolor="darkred"))
+        fig.text(
+            0.5,
+            0.03,
+            f"radar data for round {number} are not in the dissertation\n"
+            "(see data/harp/radar/README.md)",
+            ha="center",
+            va="bottom",
+            color="darkred",
+            fontsize=11,
+            bbox=dict(facecolor="white", edgecolor="darkred"),
+        )
     else:
         for name, points in radar.groupby("radar"):
             by_time.plot(points.time_s, points.altitude_m / _KM, "o", ms=3, label=f"{name} radar")
-            by_range.plot(points.range_m / _KM, points.altitude_m / _KM, "o", ms=3,
-                          label=f"{name} radar")
+            by_range.plot(
+                points.range_m / _KM, points.altitude_m / _KM, "o", ms=3, label=f"{name} radar"
+            )
     for axes in (by_time, by_range):
-        axes.axhline(row.apogee_m / _KM, color="0.3", ls=":", lw=1.2,
-                     label=f"measured apogee {row.apogee_m / _KM:.0f} km")
+        axes.axhline(
+            row.apogee_m / _KM,
+            color="0.3",
+            ls=":",
+            lw=1.2,
+            label=f"measured apogee {row.apogee_m / _KM:.0f} km",
+        )
     if launch_site.name == "Barbados":
         for (label, range_km), marker in zip(TEXT_SPLASH_RANGES_KM.get(number, {}).items(), "v^"):
-            by_range.plot(range_km, 0.0, marker, color="k", ms=8, clip_on=False,
-                          label=f"{label} {range_km:.1f} km")
+            by_range.plot(
+                range_km,
+                0.0,
+                marker,
+                color="k",
+                ms=8,
+                clip_on=False,
+                label=f"{label} {range_km:.1f} km",
+            )
     by_time.set(xlabel="time (s)", ylabel="altitude (km)")
     by_range.set(xlabel="range from the gun (km)", ylabel="altitude (km)")
     for axes in (by_time, by_range):
         axes.legend(loc="lower center")
-    fig.suptitle(f"{launch_site.name} round {number}: radar data and ECI Modified Kepler "
-                 "solution")
+    fig.suptitle(f"{launch_site.name} round {number}: radar data and ECI Modified Kepler solution")
     return fig

@@ -14,8 +14,8 @@ The state is second order: ``y = [position (3), velocity (3)]`` per trajectory, 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 from scipy.integrate import DOP853
@@ -56,12 +56,12 @@ class Breakpoint:
 class Solution:
     """Accepted steps of every trajectory and the time of each event (NaN if not reached)."""
 
-    times: list[np.ndarray]          # per trajectory: (k,) step times
-    states: list[np.ndarray]         # per trajectory: (6, k)
+    times: list[np.ndarray]  # per trajectory: (k,) step times
+    states: list[np.ndarray]  # per trajectory: (6, k)
     accelerations: list[np.ndarray]  # per trajectory: (3, k)
     event_times: dict[str, np.ndarray]
     rhs_evaluations: int
-    steps: np.ndarray                # accepted steps per trajectory
+    steps: np.ndarray  # accepted steps per trajectory
 
     def sample(self, index: int, times_s: np.ndarray) -> np.ndarray:
         """State (6, m) of trajectory ``index`` at ``times_s`` within its integrated span."""
@@ -80,12 +80,22 @@ def hermite(t0, t1, y0, y1, a0, a1, t):
     s = (t - t0) / h
     s2, s3 = s * s, s * s * s
     s4, s5 = s3 * s, s3 * s * s
-    basis = (1 - 10 * s3 + 15 * s4 - 6 * s5, s - 6 * s3 + 8 * s4 - 3 * s5,
-             0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5, 0.5 * s3 - s4 + 0.5 * s5,
-             -4 * s3 + 7 * s4 - 3 * s5, 10 * s3 - 15 * s4 + 6 * s5)
-    slopes = (-30 * s2 + 60 * s3 - 30 * s4, 1 - 18 * s2 + 32 * s3 - 15 * s4,
-              s - 4.5 * s2 + 6 * s3 - 2.5 * s4, 1.5 * s2 - 4 * s3 + 2.5 * s4,
-              -12 * s2 + 28 * s3 - 15 * s4, 30 * s2 - 60 * s3 + 30 * s4)
+    basis = (
+        1 - 10 * s3 + 15 * s4 - 6 * s5,
+        s - 6 * s3 + 8 * s4 - 3 * s5,
+        0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5,
+        0.5 * s3 - s4 + 0.5 * s5,
+        -4 * s3 + 7 * s4 - 3 * s5,
+        10 * s3 - 15 * s4 + 6 * s5,
+    )
+    slopes = (
+        -30 * s2 + 60 * s3 - 30 * s4,
+        1 - 18 * s2 + 32 * s3 - 15 * s4,
+        s - 4.5 * s2 + 6 * s3 - 2.5 * s4,
+        1.5 * s2 - 4 * s3 + 2.5 * s4,
+        -12 * s2 + 28 * s3 - 15 * s4,
+        30 * s2 - 60 * s3 + 30 * s4,
+    )
     terms = (y0[:3], h * y0[3:], h * h * a0, h * h * a1, h * y1[3:], y1[:3])
     position = sum(b * term for b, term in zip(basis, terms))
     velocity = sum(d * term for d, term in zip(slopes, terms)) / h
@@ -106,8 +116,11 @@ def _root(function, g0, g1, iterations=30, tolerance=1e-13):
     previous = np.full(g0.shape, np.nan)
     for _ in range(iterations):
         denominator = g_high - g_low
-        middle = np.where(denominator != 0, (low * g_high - high * g_low)
-                          / np.where(denominator != 0, denominator, 1.0), 0.5 * (low + high))
+        middle = np.where(
+            denominator != 0,
+            (low * g_high - high * g_low) / np.where(denominator != 0, denominator, 1.0),
+            0.5 * (low + high),
+        )
         middle = np.clip(middle, low, high)
         if np.all(np.abs(middle - previous) < tolerance):
             break
@@ -125,9 +138,11 @@ def _root(function, g0, g1, iterations=30, tolerance=1e-13):
 
 def _crossing_fraction(breakpoint, t0, h, y0, y1, a0, a1):
     """Where in each trial step (0 to 1) ``breakpoint`` is crossed (Hermite interpolant)."""
+
     def along(fraction):
         t = t0 + fraction * h
         return breakpoint.function(t, hermite(t0, t0 + h, y0, y1, a0, a1, t))
+
     return _root(along, breakpoint.function(t0, y0), breakpoint.function(t0 + h, y1))
 
 
@@ -141,16 +156,21 @@ def _first_step(acceleration, y, a, scale, max_step_s):
     f1 = np.concatenate([y1[3:], acceleration(h0, y1, np.arange(y.shape[1]))])
     d2 = np.sqrt(np.mean(((f1 - f) / scale) ** 2, axis=0)) / h0
     order = DOP853.order
-    h1 = np.where(np.maximum(d1, d2) <= 1e-15, np.maximum(1e-6, h0 * 1e-3),
-                  (0.01 / np.maximum(d1, d2)) ** (1 / (order + 1)))
+    h1 = np.where(
+        np.maximum(d1, d2) <= 1e-15,
+        np.maximum(1e-6, h0 * 1e-3),
+        (0.01 / np.maximum(d1, d2)) ** (1 / (order + 1)),
+    )
     return np.minimum(np.minimum(100 * h0, h1), max_step_s)
 
 
 def _locate(event, t0, t1, y0, y1, a0, a1):
     """Time of ``event`` between t0 and t1 on the Hermite interpolant (vectorised)."""
+
     def along(fraction):
         t = t0 + fraction * (t1 - t0)
         return event.function(t, hermite(t0, t1, y0, y1, a0, a1, t))
+
     fraction = _root(along, event.function(t0, y0), event.function(t1, y1))
     return t0 + fraction * (t1 - t0)
 
@@ -223,13 +243,21 @@ def integrate_batch(
         stopped = np.zeros(done.size, bool)
         for event in events:
             before = event.function(t_old, y_old) > 0
-            crossed = before & (event.function(t[done], y[:, done]) <= 0) & (t[done] > event.after_s)
+            crossed = (
+                before & (event.function(t[done], y[:, done]) <= 0) & (t[done] > event.after_s)
+            )
             crossed &= np.isnan(event_times[event.name][done])
             if crossed.any():
                 j = done[crossed]
                 event_times[event.name][j] = _locate(
-                    event, t_old[crossed], t[j], y_old[:, crossed], y[:, j],
-                    a_old[:, crossed], a[:, j])
+                    event,
+                    t_old[crossed],
+                    t[j],
+                    y_old[:, crossed],
+                    y[:, j],
+                    a_old[:, crossed],
+                    a[:, j],
+                )
                 if event.terminal:
                     stopped |= crossed
         records.append((done, t[done], y[:, done], a[:, done]))
@@ -240,7 +268,14 @@ def integrate_batch(
     bounds = np.cumsum(np.bincount(owner, minlength=n))[:-1]
     times = np.split(np.concatenate([r[1] for r in records])[order], bounds)
     states = np.split(np.concatenate([r[2] for r in records], axis=1)[:, order], bounds, axis=1)
-    accelerations = np.split(np.concatenate([r[3] for r in records], axis=1)[:, order], bounds,
-                             axis=1)
-    return Solution(times, states, accelerations, event_times, evaluations,
-                    np.array([len(ti) - 1 for ti in times]))
+    accelerations = np.split(
+        np.concatenate([r[3] for r in records], axis=1)[:, order], bounds, axis=1
+    )
+    return Solution(
+        times,
+        states,
+        accelerations,
+        event_times,
+        evaluations,
+        np.array([len(ti) - 1 for ti in times]),
+    )

@@ -27,12 +27,29 @@ from pathlib import Path
 from . import paths
 from .registry import load_toml_rows
 
-__all__ = ["Claim", "ClaimResult", "load_claims", "evaluate", "evaluate_all",
-           "verdict_problems", "render_claims", "VERDICTS"]
+__all__ = [
+    "Claim",
+    "ClaimResult",
+    "load_claims",
+    "evaluate",
+    "evaluate_all",
+    "verdict_problems",
+    "render_claims",
+    "VERDICTS",
+]
 
 VERDICTS = ("reproduces", "close", "does not reproduce")
-_REQUIRED = ("id", "source", "statement", "text_value", "unit", "compute", "tolerance", "verdict",
-             "explanation")
+_REQUIRED = (
+    "id",
+    "source",
+    "statement",
+    "text_value",
+    "unit",
+    "compute",
+    "tolerance",
+    "verdict",
+    "explanation",
+)
 
 
 @dataclass(frozen=True)
@@ -65,7 +82,8 @@ class ClaimResult:
         the tolerance is relative."""
         difference = self.computed - self.claim.text_value
         difference = {"upper": max(difference, 0.0), "lower": max(-difference, 0.0)}.get(
-            self.claim.bound, abs(difference))
+            self.claim.bound, abs(difference)
+        )
         if self.claim.tolerance_kind == "relative":
             return difference / abs(self.claim.text_value)
         return difference
@@ -121,23 +139,31 @@ def verdict_problems(result: ClaimResult) -> list[str]:
         return [f"computed value is {result.computed}"]
     if claim.verdict == "reproduces":
         if not result.within_tolerance:
-            problems.append(f"marked 'reproduces' but deviates by {result.deviation:.4g} "
-                            f"> tolerance {claim.tolerance:g}")
+            problems.append(
+                f"marked 'reproduces' but deviates by {result.deviation:.4g} "
+                f"> tolerance {claim.tolerance:g}"
+            )
         return problems
     if not claim.explanation.strip():
         problems.append(f"verdict {claim.verdict!r} needs an explanation")
     if result.within_tolerance:
-        problems.append(f"marked {claim.verdict!r} but is within tolerance "
-                        f"({result.deviation:.4g} <= {claim.tolerance:g}): it reproduces")
+        problems.append(
+            f"marked {claim.verdict!r} but is within tolerance "
+            f"({result.deviation:.4g} <= {claim.tolerance:g}): it reproduces"
+        )
     if claim.verdict == "close":
         if claim.close_tolerance is None:
             problems.append("verdict 'close' needs a close_tolerance")
         elif result.deviation > claim.close_tolerance:
-            problems.append(f"marked 'close' but deviates by {result.deviation:.4g} "
-                            f"> close_tolerance {claim.close_tolerance:g}")
+            problems.append(
+                f"marked 'close' but deviates by {result.deviation:.4g} "
+                f"> close_tolerance {claim.close_tolerance:g}"
+            )
     elif claim.close_tolerance is not None and result.deviation <= claim.close_tolerance:
-        problems.append(f"marked 'does not reproduce' but is within close_tolerance "
-                        f"{claim.close_tolerance:g}: it is close")
+        problems.append(
+            f"marked 'does not reproduce' but is within close_tolerance "
+            f"{claim.close_tolerance:g}: it is close"
+        )
     return problems
 
 
@@ -164,12 +190,15 @@ def render_claims(target: Path | None = None) -> Path:
     ]
     for r in results:
         c = r.claim
-        tolerance = (f"{c.tolerance:g}" if c.tolerance_kind == "absolute"
-                     else f"{c.tolerance:.2%} rel.")
+        tolerance = (
+            f"{c.tolerance:g}" if c.tolerance_kind == "absolute" else f"{c.tolerance:.2%} rel."
+        )
         text = {"upper": "< ", "lower": "> "}.get(c.bound, "") + _number(c.text_value)
-        lines.append(f"| `{c.id}` | {c.source} | {c.statement} | {text} | "
-                     f"{_number(r.computed)} | {c.unit} | {tolerance} | **{c.verdict}** | "
-                     f"{c.explanation} |")
+        lines.append(
+            f"| `{c.id}` | {c.source} | {c.statement} | {text} | "
+            f"{_number(r.computed)} | {c.unit} | {tolerance} | **{c.verdict}** | "
+            f"{c.explanation} |"
+        )
     target.parent.mkdir(parents=True, exist_ok=True)
     target.write_text("\n".join(lines) + "\n")
     return target

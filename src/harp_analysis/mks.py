@@ -37,8 +37,14 @@ from .atmosphere import SEA_LEVEL_DENSITY_KG_M3, TEXT_DECAY_CONSTANT_PER_M, get_
 from .projectiles import Projectile
 from .validation import ModelValidityWarning, check_range, finite_array, finite_scalar
 
-__all__ = ["ModifiedKeplerSolution", "decay_factor_beta", "decay_rate_tau", "for_projectile",
-           "BETA_VALIDITY_LIMIT", "SENSIBLE_ATMOSPHERE_M"]
+__all__ = [
+    "ModifiedKeplerSolution",
+    "decay_factor_beta",
+    "decay_rate_tau",
+    "for_projectile",
+    "BETA_VALIDITY_LIMIT",
+    "SENSIBLE_ATMOSPHERE_M",
+]
 
 #: Chapter 4 B: "a beta value of less than 0.25 is required for a reasonably accurate MKS".
 BETA_VALIDITY_LIMIT = 0.25
@@ -51,15 +57,26 @@ def _gauss_legendre(order: int):
     return np.polynomial.legendre.leggauss(order)
 
 
-def decay_factor_beta(drag_coefficient, surface_density_kg_m3, area_m2, mass_kg, elevation_rad,
-                      decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M):
+def decay_factor_beta(
+    drag_coefficient,
+    surface_density_kg_m3,
+    area_m2,
+    mass_kg,
+    elevation_rad,
+    decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
+):
     """Eq 3.22: beta = Cd0 rho0 A / (2 k m sin phi0), the MKS ballistic coefficient."""
-    return (np.asarray(drag_coefficient) * surface_density_kg_m3 * area_m2
-            / (2 * decay_constant_per_m * mass_kg * np.sin(elevation_rad)))
+    return (
+        np.asarray(drag_coefficient)
+        * surface_density_kg_m3
+        * area_m2
+        / (2 * decay_constant_per_m * mass_kg * np.sin(elevation_rad))
+    )
 
 
-def decay_rate_tau(elevation_rad, decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
-                   radius_m=earth.RADIUS_M):
+def decay_rate_tau(
+    elevation_rad, decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M, radius_m=earth.RADIUS_M
+):
     """Eq 3.27: tau = k r0 tan phi0, the decay rate of the density along the angular range."""
     return decay_constant_per_m * radius_m * np.tan(elevation_rad)
 
@@ -71,37 +88,76 @@ class ModifiedKeplerSolution:
     single launch or (m, k) for many; ``theta_rad`` may also be (m, k), one row per launch.
     """
 
-    def __init__(self, speed_m_s, elevation_rad, beta, tau, *, n_terms: int = 3,
-                 radius_m=earth.RADIUS_M, drive_scale=1.0, decay_scale=1.0, warn: bool = True):
-        speed = check_range(finite_array(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0,
-                            low_inclusive=False, unit="m/s")
-        elevation = check_range(finite_array(elevation_rad, "elevation_rad"), "elevation_rad",
-                                low=0.0, low_inclusive=False, high=math.pi / 2,
-                                high_inclusive=False, unit="rad")
+    def __init__(
+        self,
+        speed_m_s,
+        elevation_rad,
+        beta,
+        tau,
+        *,
+        n_terms: int = 3,
+        radius_m=earth.RADIUS_M,
+        drive_scale=1.0,
+        decay_scale=1.0,
+        warn: bool = True,
+    ):
+        speed = check_range(
+            finite_array(speed_m_s, "speed_m_s"),
+            "speed_m_s",
+            low=0.0,
+            low_inclusive=False,
+            unit="m/s",
+        )
+        elevation = check_range(
+            finite_array(elevation_rad, "elevation_rad"),
+            "elevation_rad",
+            low=0.0,
+            low_inclusive=False,
+            high=math.pi / 2,
+            high_inclusive=False,
+            unit="rad",
+        )
         beta = check_range(finite_array(beta, "beta"), "beta", low=0.0)
         tau = check_range(finite_array(tau, "tau"), "tau", low=0.0)
-        radius = check_range(finite_array(radius_m, "radius_m"), "radius_m", low=0.0,
-                             low_inclusive=False, unit="m")
+        radius = check_range(
+            finite_array(radius_m, "radius_m"), "radius_m", low=0.0, low_inclusive=False, unit="m"
+        )
         n_terms = int(check_range(finite_scalar(n_terms, "n_terms"), "n_terms", low=1))
-        arrays = np.broadcast_arrays(speed, elevation, beta, tau, radius,
-                                     finite_array(drive_scale, "drive_scale"),
-                                     finite_array(decay_scale, "decay_scale"))
+        arrays = np.broadcast_arrays(
+            speed,
+            elevation,
+            beta,
+            tau,
+            radius,
+            finite_array(drive_scale, "drive_scale"),
+            finite_array(decay_scale, "decay_scale"),
+        )
         self.single = arrays[0].ndim == 0
-        (self.speed_m_s, self.elevation_rad, self.beta, self.tau, self.radius_m,
-         self.drive_scale, self.decay_scale) = (np.atleast_1d(a).astype(float)[:, None]
-                                                for a in arrays)
+        (
+            self.speed_m_s,
+            self.elevation_rad,
+            self.beta,
+            self.tau,
+            self.radius_m,
+            self.drive_scale,
+            self.decay_scale,
+        ) = (np.atleast_1d(a).astype(float)[:, None] for a in arrays)
         self.n_terms = n_terms
-        self.h0 = self.speed_m_s * self.radius_m * np.cos(self.elevation_rad)       # eq 6.13
-        self.h_inf = self.h0 * np.exp(-self.beta * self.decay_scale)                 # eq 3.23
-        self.c3 = earth.GM_M3_S2 / self.h_inf**2                                      # eq 6.8
+        self.h0 = self.speed_m_s * self.radius_m * np.cos(self.elevation_rad)  # eq 6.13
+        self.h_inf = self.h0 * np.exp(-self.beta * self.decay_scale)  # eq 3.23
+        self.c3 = earth.GM_M3_S2 / self.h_inf**2  # eq 6.8
         n = np.arange(n_terms)
         factorial = np.array([math.factorial(i) for i in n], dtype=float)
-        self.amplitudes = (self.c3 * (-2 * self.beta * self.drive_scale) ** n
-                           / (factorial * (1 + (n * self.tau) ** 2)))                 # (m, N)
-        self.rates = n * self.tau                                                     # (m, N)
+        self.amplitudes = (
+            self.c3
+            * (-2 * self.beta * self.drive_scale) ** n
+            / (factorial * (1 + (n * self.tau) ** 2))
+        )  # (m, N)
+        self.rates = n * self.tau  # (m, N)
         self.c2 = 1 / self.radius_m - self.amplitudes.sum(axis=1, keepdims=True)
-        self.c1 = (-np.tan(self.elevation_rad) / self.radius_m
-                   + (self.rates * self.amplitudes).sum(axis=1, keepdims=True))
+        self.c1 = -np.tan(self.elevation_rad) / self.radius_m + (self.rates * self.amplitudes).sum(
+            axis=1, keepdims=True
+        )
         if warn:
             self._warn_outside_validity()
 
@@ -115,19 +171,25 @@ class ModifiedKeplerSolution:
 
     def _terms(self, theta):
         """sum_n A_n e^{-n tau theta} and its first two derivatives, shapes (m, k)."""
-        decay = np.exp(-self.rates[:, :, None] * theta[:, None, :])   # (m, N, k)
+        decay = np.exp(-self.rates[:, :, None] * theta[:, None, :])  # (m, N, k)
         a = self.amplitudes[:, :, None]
         r = self.rates[:, :, None]
-        return (np.sum(a * decay, axis=1), np.sum(-r * a * decay, axis=1),
-                np.sum(r * r * a * decay, axis=1))
+        return (
+            np.sum(a * decay, axis=1),
+            np.sum(-r * a * decay, axis=1),
+            np.sum(r * r * a * decay, axis=1),
+        )
 
     def _solution(self, theta_rad):
         """u, du/dtheta and d2u/dtheta2 at ``theta_rad``, shapes (m, k), from one evaluation."""
         theta = self._theta(theta_rad)
         sin, cos = np.sin(theta), np.cos(theta)
         terms, slope, curvature = self._terms(theta)
-        return (self.c1 * sin + self.c2 * cos + terms, self.c1 * cos - self.c2 * sin + slope,
-                -self.c1 * sin - self.c2 * cos + curvature)
+        return (
+            self.c1 * sin + self.c2 * cos + terms,
+            self.c1 * cos - self.c2 * sin + slope,
+            -self.c1 * sin - self.c2 * cos + curvature,
+        )
 
     def u(self, theta_rad):
         """u = 1/r (1/m) at angular range ``theta_rad`` (eq 3.30's solution)."""
@@ -151,8 +213,9 @@ class ModifiedKeplerSolution:
     def angular_momentum(self, theta_rad):
         """Specific angular momentum h = h_inf exp(beta gamma), gamma = e^{-tau theta} (eq 3.23)."""
         theta = self._theta(theta_rad)
-        return self._out(self.h_inf * np.exp(self.beta * self.decay_scale
-                                             * np.exp(-self.tau * theta)))
+        return self._out(
+            self.h_inf * np.exp(self.beta * self.decay_scale * np.exp(-self.tau * theta))
+        )
 
     def speed(self, theta_rad):
         """Speed (m/s) from eq 4.2: V = h sqrt(u^2 + (du/dtheta)^2)."""
@@ -216,11 +279,14 @@ class ModifiedKeplerSolution:
         u, slope, _ = self._solution(theta_rad)
         h = self.angular_momentum(theta_rad)
         theta = self._out(self._theta(theta_rad))
-        return {"theta_rad": theta, "ground_range_m": theta * self._out(self.radius_m),
-                "altitude_m": self._out(1 / u - self.radius_m),
-                "speed_m_s": h * self._out(np.hypot(u, slope)),
-                "flight_path_angle_rad": self._out(np.arctan2(-slope, u)),
-                "time_s": self.time(theta_rad, order)}
+        return {
+            "theta_rad": theta,
+            "ground_range_m": theta * self._out(self.radius_m),
+            "altitude_m": self._out(1 / u - self.radius_m),
+            "speed_m_s": h * self._out(np.hypot(u, slope)),
+            "flight_path_angle_rad": self._out(np.arctan2(-slope, u)),
+            "time_s": self.time(theta_rad, order),
+        }
 
     def time(self, theta_rad, order: int = 3):
         """Time of flight (s) from launch to each ``theta_rad`` (sorted, starting anywhere >= 0),
@@ -245,33 +311,65 @@ class ModifiedKeplerSolution:
     # --- validity ------------------------------------------------------------------------------
     def _warn_outside_validity(self):
         if np.any(self.beta > BETA_VALIDITY_LIMIT):
-            warnings.warn(f"MKS beta = {self.beta.max():.3g} > {BETA_VALIDITY_LIMIT}: the text finds "
-                          "the solution inaccurate for such high-drag projectiles (Ch. 4 B)",
-                          ModelValidityWarning, stacklevel=3)
+            warnings.warn(
+                f"MKS beta = {self.beta.max():.3g} > {BETA_VALIDITY_LIMIT}: the text finds "
+                "the solution inaccurate for such high-drag projectiles (Ch. 4 B)",
+                ModelValidityWarning,
+                stacklevel=3,
+            )
         apogee = np.atleast_1d(self.apogee_altitude())
         if np.any(~(apogee > SENSIBLE_ATMOSPHERE_M)):
-            warnings.warn(f"MKS apogee {np.nanmin(apogee) / 1e3:.1f} km does not leave the "
-                          f"sensible atmosphere (below {SENSIBLE_ATMOSPHERE_M / 1e3:g} km), where "
-                          "the straight-line drag assumption fails (Ch. 3)",
-                          ModelValidityWarning, stacklevel=3)
+            warnings.warn(
+                f"MKS apogee {np.nanmin(apogee) / 1e3:.1f} km does not leave the "
+                f"sensible atmosphere (below {SENSIBLE_ATMOSPHERE_M / 1e3:g} km), where "
+                "the straight-line drag assumption fails (Ch. 3)",
+                ModelValidityWarning,
+                stacklevel=3,
+            )
 
 
-def for_projectile(projectile: Projectile, elevation_deg, *, speed_m_s=None, n_terms: int = 3,
-                   decay_constant_per_m: float = TEXT_DECAY_CONSTANT_PER_M,
-                   surface_density_kg_m3: float = SEA_LEVEL_DENSITY_KG_M3,
-                   sound_atmosphere: str = "two_segment", warn: bool = True
-                   ) -> ModifiedKeplerSolution:
+def for_projectile(
+    projectile: Projectile,
+    elevation_deg,
+    *,
+    speed_m_s=None,
+    n_terms: int = 3,
+    decay_constant_per_m: float = TEXT_DECAY_CONSTANT_PER_M,
+    surface_density_kg_m3: float = SEA_LEVEL_DENSITY_KG_M3,
+    sound_atmosphere: str = "two_segment",
+    warn: bool = True,
+) -> ModifiedKeplerSolution:
     """The non-rotating MKS of ``projectile`` fired at ``elevation_deg``: Cd0 from its drag law
     at the launch Mach number (speed of sound of ``sound_atmosphere`` at sea level), rho0 and
     k of eq 3.11 (Chapter 3 B)."""
-    elevation = np.radians(check_range(finite_array(elevation_deg, "elevation_deg"),
-                                       "elevation_deg", low=0.0, low_inclusive=False, high=90.0,
-                                       high_inclusive=False, unit="deg"))
-    speed = finite_array(projectile.launch_speed_m_s if speed_m_s is None else speed_m_s,
-                         "speed_m_s")
+    elevation = np.radians(
+        check_range(
+            finite_array(elevation_deg, "elevation_deg"),
+            "elevation_deg",
+            low=0.0,
+            low_inclusive=False,
+            high=90.0,
+            high_inclusive=False,
+            unit="deg",
+        )
+    )
+    speed = finite_array(
+        projectile.launch_speed_m_s if speed_m_s is None else speed_m_s, "speed_m_s"
+    )
     cd0 = projectile.drag_law(speed / get_atmosphere(sound_atmosphere).speed_of_sound(0.0))
-    beta = decay_factor_beta(cd0, surface_density_kg_m3, projectile.reference_area_m2,
-                             projectile.mass_kg, elevation, decay_constant_per_m)
-    return ModifiedKeplerSolution(speed, elevation, beta,
-                                  decay_rate_tau(elevation, decay_constant_per_m),
-                                  n_terms=n_terms, warn=warn)
+    beta = decay_factor_beta(
+        cd0,
+        surface_density_kg_m3,
+        projectile.reference_area_m2,
+        projectile.mass_kg,
+        elevation,
+        decay_constant_per_m,
+    )
+    return ModifiedKeplerSolution(
+        speed,
+        elevation,
+        beta,
+        decay_rate_tau(elevation, decay_constant_per_m),
+        n_terms=n_terms,
+        warn=warn,
+    )

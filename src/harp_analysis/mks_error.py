@@ -51,15 +51,17 @@ def position_errors(simulation: pd.DataFrame, solution: ModifiedKeplerSolution) 
     r_sim = flight.altitude_m.to_numpy() + earth.RADIUS_M
     t_sim = flight.time_s.to_numpy()
     r_mks = solution.radius(theta)
-    eps_r = r_sim - r_mks                                                   # eq 4.4
+    eps_r = r_sim - r_mks  # eq 4.4
     t_mks = solution.time(np.maximum.accumulate(theta))
-    eps_theta = (t_mks - t_sim) * flight.speed_m_s.to_numpy()              # eq 4.5
+    eps_theta = (t_mks - t_sim) * flight.speed_m_s.to_numpy()  # eq 4.5
 
     r0, phi0, c3 = solution.radius_m[0, 0], solution.elevation_rad[0, 0], solution.c3[0, 0]
-    phi_printed = np.arctan(r_mks * (1 / r0 - c3) * np.sin(theta)
-                            - r_mks * np.tan(phi0) / r0 * np.cos(theta))   # eq 4.6 as printed
-    total_printed = np.hypot(eps_r + eps_theta * np.cos(phi_printed),
-                             eps_theta * np.sin(phi_printed))              # eq 4.7 as printed
+    phi_printed = np.arctan(
+        r_mks * (1 / r0 - c3) * np.sin(theta) - r_mks * np.tan(phi0) / r0 * np.cos(theta)
+    )  # eq 4.6 as printed
+    total_printed = np.hypot(
+        eps_r + eps_theta * np.cos(phi_printed), eps_theta * np.sin(phi_printed)
+    )  # eq 4.7 as printed
     phi = solution.flight_path_angle(theta)
     total_geometric = np.hypot(eps_r + eps_theta * np.sin(phi), eps_theta * np.cos(phi))
 
@@ -68,13 +70,20 @@ def position_errors(simulation: pd.DataFrame, solution: ModifiedKeplerSolution) 
     theta_at_t = np.interp(t_sim, solution.time(grid), grid)
     r_at_t = solution.radius(theta_at_t)
     cross = flight.cross_range_m.to_numpy() / earth.RADIUS_M
-    sim_xyz = r_sim * np.array([np.cos(cross) * np.cos(theta), np.cos(cross) * np.sin(theta),
-                                np.sin(cross)])
+    sim_xyz = r_sim * np.array(
+        [np.cos(cross) * np.cos(theta), np.cos(cross) * np.sin(theta), np.sin(cross)]
+    )
     mks_xyz = r_at_t * np.array([np.cos(theta_at_t), np.sin(theta_at_t), 0 * theta_at_t])
-    return pd.DataFrame({
-        "time_s": t_sim, "theta_rad": theta, "radial_error_m": eps_r,
-        "along_track_error_m": eps_theta, "phi_printed_rad": phi_printed,
-        "phi_mks_rad": phi, "total_printed_m": total_printed,
-        "total_geometric_m": total_geometric,
-        "direct_m": np.linalg.norm(sim_xyz - mks_xyz, axis=0),
-    })
+    return pd.DataFrame(
+        {
+            "time_s": t_sim,
+            "theta_rad": theta,
+            "radial_error_m": eps_r,
+            "along_track_error_m": eps_theta,
+            "phi_printed_rad": phi_printed,
+            "phi_mks_rad": phi,
+            "total_printed_m": total_printed,
+            "total_geometric_m": total_geometric,
+            "direct_m": np.linalg.norm(sim_xyz - mks_xyz, axis=0),
+        }
+    )

@@ -106,10 +106,21 @@ from .projectiles import Projectile, check_rigid_body
 from .sixdof import DENSITY_ALTITUDES, RigidBodyModel, rigid_body_model, trajectory_table
 from .validation import ModelValidityWarning, check_choice, check_range, finite_scalar
 
-__all__ = ["SEGMENT_LENGTH_M", "MAX_SEGMENT_LENGTH_M", "COEFFICIENT_POINTS", "GRAVITY_MODELS", "MAX_SMALL_ANGLE_DEG",
-           "DENSE_AIR_PA", "SegmentCoefficients", "segment_coefficients", "epicyclic_roots",
-           "propagate_segment", "simulate_mlt", "linear_theory_derivatives",
-           "simulate_linear_theory_limit"]
+__all__ = [
+    "SEGMENT_LENGTH_M",
+    "MAX_SEGMENT_LENGTH_M",
+    "COEFFICIENT_POINTS",
+    "GRAVITY_MODELS",
+    "MAX_SMALL_ANGLE_DEG",
+    "DENSE_AIR_PA",
+    "SegmentCoefficients",
+    "segment_coefficients",
+    "epicyclic_roots",
+    "propagate_segment",
+    "simulate_mlt",
+    "linear_theory_derivatives",
+    "simulate_linear_theory_limit",
+]
 
 SEGMENT_LENGTH_M = 1000.0
 COEFFICIENT_POINTS = ("start", "middle", "average")
@@ -129,15 +140,15 @@ _CONFLUENT = 1e-6
 class SegmentCoefficients(NamedTuple):
     """The constants of one segment's linear system (eqs L2-L5; per calibre of arc length)."""
 
-    speed: float          # V (m/s), air-relative
-    axial_drag: float     # a = -k CX0 / m
-    lift: float           # A = k CNA / m
+    speed: float  # V (m/s), air-relative
+    axial_drag: float  # a = -k CX0 / m
+    lift: float  # A = k CNA / m
     static_moment: float  # B = k CNA SLDEL / Iy (1/(m s) ... per calibre)
-    damping: float        # C = k D^2 CMQ / (2 Iy)
-    gyroscopic: float     # E = (Ix / Iy) p D / V
-    roll_damping: float   # kappa = k D^2 CLP / (2 Ix)
-    roll_drive: float     # P_d = k D V CLDD / Ix
-    gravity: tuple        # flat-frame gravity vector (m/s^2)
+    damping: float  # C = k D^2 CMQ / (2 Iy)
+    gyroscopic: float  # E = (Ix / Iy) p D / V
+    roll_damping: float  # kappa = k D^2 CLP / (2 Ix)
+    roll_drive: float  # P_d = k D V CLDD / Ix
+    gravity: tuple  # flat-frame gravity vector (m/s^2)
     dynamic_pressure: float  # rho V^2 / 2 (Pa), for the validity check
 
 
@@ -152,20 +163,22 @@ def _apply(rows: tuple, vector) -> tuple:
 
 
 def _apply_transpose(rows: tuple, vector) -> tuple:
-    return tuple(rows[0][j] * vector[0] + rows[1][j] * vector[1] + rows[2][j] * vector[2]
-                 for j in range(3))
+    return tuple(
+        rows[0][j] * vector[0] + rows[1][j] * vector[1] + rows[2][j] * vector[2] for j in range(3)
+    )
 
 
 def _gravity(x: float, y: float, z: float, uniform: bool) -> tuple:
     if uniform:
-        return (0.0, 0.0, _GM / _R ** 2)
+        return (0.0, 0.0, _GM / _R**2)
     radius = math.sqrt(x * x + y * y + (_R - z) ** 2)
-    g = _GM / radius ** 3
+    g = _GM / radius**3
     return (-g * x, -g * y, g * (_R - z))
 
 
-def segment_coefficients(model: RigidBodyModel, state, *, aerodynamics: bool = True,
-                         uniform_gravity: bool = False) -> SegmentCoefficients:
+def segment_coefficients(
+    model: RigidBodyModel, state, *, aerodynamics: bool = True, uniform_gravity: bool = False
+) -> SegmentCoefficients:
     """The coefficients of eqs L2-L5 at ``state`` (12 no-roll states, see module docstring)."""
     x, y, z, _, theta, psi, u, v, w, p, _, _ = state
     rows = _rotation(theta, psi)
@@ -178,24 +191,37 @@ def segment_coefficients(model: RigidBodyModel, state, *, aerodynamics: bool = T
     rho, sound = model.air(x, y, z)
     cx0, _, cna, _, cmq, clp, cldd, arm, _ = model.coefficients(speed / sound)
     d = model.d
-    k = math.pi * rho * d ** 3 / 8.0
+    k = math.pi * rho * d**3 / 8.0
     return SegmentCoefficients(
-        speed, -k * cx0 / model.mass, k * cna / model.mass, k * cna * arm / model.iy,
-        k * d * d * cmq / (2.0 * model.iy), gyroscopic, k * d * d * clp / (2.0 * model.ix),
-        k * d * speed * cldd / model.ix, gravity, 0.5 * rho * speed * speed)
+        speed,
+        -k * cx0 / model.mass,
+        k * cna / model.mass,
+        k * cna * arm / model.iy,
+        k * d * d * cmq / (2.0 * model.iy),
+        gyroscopic,
+        k * d * d * clp / (2.0 * model.ix),
+        k * d * speed * cldd / model.ix,
+        gravity,
+        0.5 * rho * speed * speed,
+    )
 
 
 def _average(a: SegmentCoefficients, b: SegmentCoefficients) -> SegmentCoefficients:
-    return SegmentCoefficients(*(tuple((i + j) / 2 for i, j in zip(x, y)) if isinstance(x, tuple)
-                                 else (x + y) / 2 for x, y in zip(a, b)))
+    return SegmentCoefficients(
+        *(
+            tuple((i + j) / 2 for i, j in zip(x, y)) if isinstance(x, tuple) else (x + y) / 2
+            for x, y in zip(a, b)
+        )
+    )
 
 
 def epicyclic_roots(c: SegmentCoefficients, diameter_m: float) -> tuple[complex, complex]:
     """The eigenvalues m +- delta of eq L5's matrix, fast mode (larger |imaginary part|) first:
     imaginary parts are the mode frequencies (rad per calibre), real parts the damping rates."""
     mean = 0.5 * complex(c.damping - c.lift, c.gyroscopic)
-    delta = cmath.sqrt(0.25 * complex(c.lift + c.damping, c.gyroscopic) ** 2
-                       + diameter_m * c.static_moment)
+    delta = cmath.sqrt(
+        0.25 * complex(c.lift + c.damping, c.gyroscopic) ** 2 + diameter_m * c.static_moment
+    )
     first, second = mean + delta, mean - delta
     return (first, second) if abs(first.imag) >= abs(second.imag) else (second, first)
 
@@ -222,11 +248,17 @@ def _scalar_solution(rate: float, forcing: float, x0: float, s: float) -> tuple[
     return e.real * x0 + f1 * forcing, f1 * x0 + f2 * forcing
 
 
-def _epicyclic_solution(c: SegmentCoefficients, d: float, v0: complex, q0: complex,
-                        force_v: complex, force_q: complex, s: float) -> tuple:
+def _epicyclic_solution(
+    c: SegmentCoefficients,
+    d: float,
+    v0: complex,
+    q0: complex,
+    force_v: complex,
+    force_q: complex,
+    s: float,
+) -> tuple:
     """X(s) and integral_0^s X of eq L5 (Cayley-Hamilton, module docstring)."""
-    a11, a12, a21, a22 = -c.lift, 1j * d, -1j * c.static_moment, complex(c.damping,
-                                                                         c.gyroscopic)
+    a11, a12, a21, a22 = -c.lift, 1j * d, -1j * c.static_moment, complex(c.damping, c.gyroscopic)
     mean = 0.5 * (a11 + a22)
     delta = cmath.sqrt(0.25 * (a11 - a22) ** 2 + a12 * a21)
     e1, p11, p21, _ = _phi((mean + delta) * s)
@@ -234,24 +266,30 @@ def _epicyclic_solution(c: SegmentCoefficients, d: float, v0: complex, q0: compl
     # f0, f1, f2 at both roots; their means and divided differences.
     if abs(2.0 * delta * s) > _CONFLUENT:
         f = ((e1 + e2) / 2, s * (p11 + p12) / 2, s * s * (p21 + p22) / 2)
-        df = ((e1 - e2) / (2 * delta), s * (p11 - p12) / (2 * delta),
-              s * s * (p21 - p22) / (2 * delta))
+        df = (
+            (e1 - e2) / (2 * delta),
+            s * (p11 - p12) / (2 * delta),
+            s * s * (p21 - p22) / (2 * delta),
+        )
     else:
         e, phi1, phi2, phi3 = _phi(mean * s)
         f = (e, s * phi1, s * s * phi2)
-        df = (s * e, s * s * (phi1 - phi2), s ** 3 * (phi2 - 2.0 * phi3))
+        df = (s * e, s * s * (phi1 - phi2), s**3 * (phi2 - 2.0 * phi3))
 
     def apply(k, v, q):  # f_k(M) [v, q]
-        return (f[k] * v + df[k] * ((a11 - mean) * v + a12 * q),
-                f[k] * q + df[k] * (a21 * v + (a22 - mean) * q))
+        return (
+            f[k] * v + df[k] * ((a11 - mean) * v + a12 * q),
+            f[k] * q + df[k] * (a21 * v + (a22 - mean) * q),
+        )
 
     (v_a, q_a), (v_b, q_b) = apply(0, v0, q0), apply(1, force_v, force_q)
     (iv_a, iq_a), (iv_b, iq_b) = apply(1, v0, q0), apply(2, force_v, force_q)
     return v_a + v_b, q_a + q_b, iv_a + iv_b, iq_a + iq_b
 
 
-def propagate_segment(model: RigidBodyModel, state, c: SegmentCoefficients, rows: tuple,
-                      secant: float, s: float) -> tuple:
+def propagate_segment(
+    model: RigidBodyModel, state, c: SegmentCoefficients, rows: tuple, secant: float, s: float
+) -> tuple:
     """The 12 states at arc length ``s`` (calibres) into a segment starting at ``state``, with
     coefficients ``c``, the flat-to-N rotation ``rows`` used for gravity, wind and position
     (eq L7) and sec(theta) ``secant`` (eq L6). Closed form throughout (eqs L2-L7)."""
@@ -263,13 +301,30 @@ def propagate_segment(model: RigidBodyModel, state, c: SegmentCoefficients, rows
     p1, p_int = _scalar_solution(c.roll_damping, c.roll_drive, p, s)
     wind = complex(v_w, w_w)
     lateral, rate, lateral_int, rate_int = _epicyclic_solution(
-        c, d, complex(v, w), complex(q, r), c.lift * wind + d * complex(g_v, g_w) / speed,
-        1j * c.static_moment * wind, s)
+        c,
+        d,
+        complex(v, w),
+        complex(q, r),
+        c.lift * wind + d * complex(g_v, g_w) / speed,
+        1j * c.static_moment * wind,
+        s,
+    )
     scale = d / speed
     dx, dy, dz = _apply_transpose(rows, (u_int, lateral_int.real, lateral_int.imag))
-    return (x + scale * dx, y + scale * dy, z + scale * dz, phi + scale * p_int,
-            theta + scale * rate_int.real, psi + scale * secant * rate_int.imag,
-            u1, lateral.real, lateral.imag, p1, rate.real, rate.imag)
+    return (
+        x + scale * dx,
+        y + scale * dy,
+        z + scale * dz,
+        phi + scale * p_int,
+        theta + scale * rate_int.real,
+        psi + scale * secant * rate_int.imag,
+        u1,
+        lateral.real,
+        lateral.imag,
+        p1,
+        rate.real,
+        rate.imag,
+    )
 
 
 class _Segment(NamedTuple):
@@ -291,9 +346,9 @@ class _Segment(NamedTuple):
 def _solve_segment(model, state, length, coefficients_at, aerodynamics, uniform) -> _Segment:
     """Eq L8: a first pass at the start's attitude and coefficients, then the second pass with
     the trapezoid rotation and the coefficients at ``coefficients_at``."""
+
     def coefficients(at):
-        return segment_coefficients(model, at, aerodynamics=aerodynamics,
-                                    uniform_gravity=uniform)
+        return segment_coefficients(model, at, aerodynamics=aerodynamics, uniform_gravity=uniform)
 
     start = coefficients(state)
     rows0 = _rotation(state[4], state[5])
@@ -334,22 +389,35 @@ def _validity_problem(segment: _Segment, model) -> str | None:
     where = f"at {_altitude(state) / 1e3:.1f} km ({pressure / 1e3:.1f} kPa dynamic pressure)"
     growth = max(root.real for root in epicyclic_roots(segment.start_coefficients, model.d))
     if growth * segment.length > 1.0:
-        return (f"an epicyclic mode grows e-fold every {model.d / growth:.3g} m {where}: the "
-                "projectile is dynamically unstable there and its angle of attack cannot stay "
-                "small")
+        return (
+            f"an epicyclic mode grows e-fold every {model.d / growth:.3g} m {where}: the "
+            "projectile is dynamically unstable there and its angle of attack cannot stay "
+            "small"
+        )
     alpha = math.degrees(math.atan2(math.hypot(*air_velocity[1:]), air_velocity[0]))
     if alpha > MAX_SMALL_ANGLE_DEG:
-        return (f"the angle of attack reaches {alpha:.1f} deg {where}; linear theory assumes "
-                "small angles where the air acts")
+        return (
+            f"the angle of attack reaches {alpha:.1f} deg {where}; linear theory assumes "
+            "small angles where the air acts"
+        )
 
 
-def simulate_mlt(projectile: Projectile, *, elevation_deg: float = 50.0,
-                 speed_m_s: float = 2022.0, spin_rad_s: float = 10.0,
-                 crosswind_m_s: float = 5.0, atmosphere="two_segment",
-                 density_altitude: str = "flat", segment_length_m: float = SEGMENT_LENGTH_M,
-                 coefficients_at: str = "middle", gravity: str = "central",
-                 aerodynamics: bool = True, max_time_s: float = 400.0,
-                 output_step_s: float = 0.5) -> pd.DataFrame:
+def simulate_mlt(
+    projectile: Projectile,
+    *,
+    elevation_deg: float = 50.0,
+    speed_m_s: float = 2022.0,
+    spin_rad_s: float = 10.0,
+    crosswind_m_s: float = 5.0,
+    atmosphere="two_segment",
+    density_altitude: str = "flat",
+    segment_length_m: float = SEGMENT_LENGTH_M,
+    coefficients_at: str = "middle",
+    gravity: str = "central",
+    aerodynamics: bool = True,
+    max_time_s: float = 400.0,
+    output_step_s: float = 0.5,
+) -> pd.DataFrame:
     """One MLT flight (module docstring, eqs L1-L8) from launch to impact, as the 6DOF's table.
 
     The launch, wind, atmosphere and ``density_altitude`` arguments are those of
@@ -363,22 +431,44 @@ def simulate_mlt(projectile: Projectile, *, elevation_deg: float = 50.0,
     the 6DOF's does plus ``n_segments``.
     """
     projectile = check_rigid_body(projectile, "MLT")
-    elevation = check_range(finite_scalar(elevation_deg, "elevation_deg"), "elevation_deg",
-                            low=0.0, low_inclusive=False, high=90.0, high_inclusive=False,
-                            unit="deg")
-    speed = check_range(finite_scalar(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0,
-                        low_inclusive=False, unit="m/s")
+    elevation = check_range(
+        finite_scalar(elevation_deg, "elevation_deg"),
+        "elevation_deg",
+        low=0.0,
+        low_inclusive=False,
+        high=90.0,
+        high_inclusive=False,
+        unit="deg",
+    )
+    speed = check_range(
+        finite_scalar(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0, low_inclusive=False, unit="m/s"
+    )
     spin = finite_scalar(spin_rad_s, "spin_rad_s")
     crosswind = finite_scalar(crosswind_m_s, "crosswind_m_s")
-    length_m = check_range(finite_scalar(segment_length_m, "segment_length_m"),
-                           "segment_length_m", low=0.0, low_inclusive=False, unit="m")
+    length_m = check_range(
+        finite_scalar(segment_length_m, "segment_length_m"),
+        "segment_length_m",
+        low=0.0,
+        low_inclusive=False,
+        unit="m",
+    )
     check_choice(coefficients_at, "coefficients_at", COEFFICIENT_POINTS)
     check_choice(gravity, "gravity", GRAVITY_MODELS)
     check_choice(density_altitude, "density_altitude", DENSITY_ALTITUDES)
-    max_time = check_range(finite_scalar(max_time_s, "max_time_s"), "max_time_s", low=0.0,
-                           low_inclusive=False, unit="s")
-    step = check_range(finite_scalar(output_step_s, "output_step_s"), "output_step_s",
-                       low=0.0, low_inclusive=False, unit="s")
+    max_time = check_range(
+        finite_scalar(max_time_s, "max_time_s"),
+        "max_time_s",
+        low=0.0,
+        low_inclusive=False,
+        unit="s",
+    )
+    step = check_range(
+        finite_scalar(output_step_s, "output_step_s"),
+        "output_step_s",
+        low=0.0,
+        low_inclusive=False,
+        unit="s",
+    )
     air = atmosphere if isinstance(atmosphere, AtmosphereModel) else get_atmosphere(atmosphere)
     model = rigid_body_model(projectile, air, (0.0, crosswind, 0.0), density_altitude)
     length = length_m / model.d
@@ -388,26 +478,34 @@ def simulate_mlt(projectile: Projectile, *, elevation_deg: float = 50.0,
     except ValueError:  # escape speed: no bound
         longest_m = math.inf
     if length_m > longest_m:
-        raise ValueError(f"segment_length_m = {length_m:g} m is longer than the flight: even "
-                         f"without drag it travels at most {longest_m / 1e3:.0f} km")
+        raise ValueError(
+            f"segment_length_m = {length_m:g} m is longer than the flight: even "
+            f"without drag it travels at most {longest_m / 1e3:.0f} km"
+        )
     if length_m > MAX_SEGMENT_LENGTH_M:
-        warnings.warn(f"segment_length_m = {length_m:g} m: MLT updates its coefficients every "
-                      f"500 m to 2 km; beyond {MAX_SEGMENT_LENGTH_M / 1e3:g} km, density, Mach "
-                      "and the coefficients change too much within a segment to be frozen",
-                      ModelValidityWarning, stacklevel=2)
+        warnings.warn(
+            f"segment_length_m = {length_m:g} m: MLT updates its coefficients every "
+            f"500 m to 2 km; beyond {MAX_SEGMENT_LENGTH_M / 1e3:g} km, density, Mach "
+            "and the coefficients change too much within a segment to be frozen",
+            ModelValidityWarning,
+            stacklevel=2,
+        )
 
     state = (0.0, 0.0, 0.0, 0.0, math.radians(elevation), 0.0, speed, 0.0, 0.0, spin, 0.0, 0.0)
     segments, time, impact, apogee, problem = [], 0.0, False, None, None
     while time < max_time:
-        segment = _solve_segment(model, state, length, coefficients_at, aerodynamics,
-                                 uniform)._replace(time_s=time)
+        segment = _solve_segment(
+            model, state, length, coefficients_at, aerodynamics, uniform
+        )._replace(time_s=time)
         problem = problem or _validity_problem(segment, model)
         duration = segment.duration_s(model)
         end = segment.at(model, length)
         if _altitude(end) < 0.0:
             if not segments:
-                raise ValueError(f"segment_length_m = {length_m:g} m is longer than the flight: "
-                                 f"{projectile.name} lands inside the first segment")
+                raise ValueError(
+                    f"segment_length_m = {length_m:g} m is longer than the flight: "
+                    f"{projectile.name} lands inside the first segment"
+                )
             s_hit = brentq(lambda s: _altitude(segment.at(model, s)), 0.0, length, xtol=1e-9)
             segment = segment._replace(length=s_hit)
             segments.append(segment)
@@ -417,55 +515,93 @@ def simulate_mlt(projectile: Projectile, *, elevation_deg: float = 50.0,
             # The positions are piecewise closed forms whose rotation T (eq L7) is fixed within a
             # segment and steps at its ends, where the direction of dr/dt turns by the segment's
             # change of pitch: the highest point is usually a segment boundary (the kink).
-            s_top = (brentq(lambda s: _radial_velocity(segment, segment.at(model, s)), 0.0,
-                            length, xtol=1e-9)
-                     if _radial_velocity(segment, segment.start) > 0.0 else 0.0)
-            apogee = (time + s_top * model.d / segment.coefficients.speed,
-                      segment.at(model, s_top))
+            s_top = (
+                brentq(
+                    lambda s: _radial_velocity(segment, segment.at(model, s)),
+                    0.0,
+                    length,
+                    xtol=1e-9,
+                )
+                if _radial_velocity(segment, segment.start) > 0.0
+                else 0.0
+            )
+            apogee = (time + s_top * model.d / segment.coefficients.speed, segment.at(model, s_top))
         if time + duration > max_time:
-            segments.append(segment._replace(length=(max_time - time) * segment.coefficients
-                                             .speed / model.d))
+            segments.append(
+                segment._replace(length=(max_time - time) * segment.coefficients.speed / model.d)
+            )
             break
         segments.append(segment)
         state, time = end, time + duration
     if problem:
-        warnings.warn(f"MLT flight of {projectile.name} is outside linear theory's validity: "
-                      f"{problem}", ModelValidityWarning, stacklevel=2)
+        warnings.warn(
+            f"MLT flight of {projectile.name} is outside linear theory's validity: {problem}",
+            ModelValidityWarning,
+            stacklevel=2,
+        )
 
     end_time = segments[-1].time_s + segments[-1].duration_s(model)
     times = np.append(np.arange(0.0, end_time, step), end_time)
     starts = np.array([segment.time_s for segment in segments])
     index = np.clip(np.searchsorted(starts, times, side="right") - 1, 0, len(segments) - 1)
-    states = np.array([segments[i].at(model, (t - segments[i].time_s)
-                                      * segments[i].coefficients.speed / model.d)
-                       for i, t in zip(index, times)]).T
+    states = np.array(
+        [
+            segments[i].at(
+                model, (t - segments[i].time_s) * segments[i].coefficients.speed / model.d
+            )
+            for i, t in zip(index, times)
+        ]
+    ).T
     frame = trajectory_table(model, times, states)
     if np.any(frame.altitude_m.to_numpy()[:-1] < -1.0):
-        raise RuntimeError(f"the MLT flight of {projectile.name} passes below the ground inside "
-                           f"a segment of {length_m:g} m (ends are checked for the impact): "
-                           "shorten segment_length_m")
+        raise RuntimeError(
+            f"the MLT flight of {projectile.name} passes below the ground inside "
+            f"a segment of {length_m:g} m (ends are checked for the impact): "
+            "shorten segment_length_m"
+        )
     if apogee is not None:
         top = trajectory_table(model, np.array([apogee[0]]), np.array(apogee[1])[:, None])
-        apogee_values = (apogee[0], float(top.altitude_m.iloc[0]),
-                         float(top.ground_range_m.iloc[0]))
+        apogee_values = (
+            apogee[0],
+            float(top.altitude_m.iloc[0]),
+            float(top.ground_range_m.iloc[0]),
+        )
     else:
         apogee_values = (math.nan,) * 3
     last = frame.iloc[-1]
     frame.attrs.update(
-        projectile=projectile.name, elevation_deg=elevation, speed_m_s=speed, spin_rad_s=spin,
-        crosswind_m_s=crosswind, atmosphere=air.name, density_altitude=density_altitude,
-        segment_length_m=length_m, coefficients_at=coefficients_at, gravity=gravity,
-        aerodynamics=aerodynamics, impact=impact, time_of_flight_s=end_time,
-        range_m=float(last.ground_range_m), cross_range_m=float(last.cross_range_m),
-        impact_speed_m_s=float(last.speed_m_s), apogee_time_s=apogee_values[0],
-        apogee_altitude_m=apogee_values[1], apogee_ground_range_m=apogee_values[2],
-        n_segments=len(segments))
+        projectile=projectile.name,
+        elevation_deg=elevation,
+        speed_m_s=speed,
+        spin_rad_s=spin,
+        crosswind_m_s=crosswind,
+        atmosphere=air.name,
+        density_altitude=density_altitude,
+        segment_length_m=length_m,
+        coefficients_at=coefficients_at,
+        gravity=gravity,
+        aerodynamics=aerodynamics,
+        impact=impact,
+        time_of_flight_s=end_time,
+        range_m=float(last.ground_range_m),
+        cross_range_m=float(last.cross_range_m),
+        impact_speed_m_s=float(last.speed_m_s),
+        apogee_time_s=apogee_values[0],
+        apogee_altitude_m=apogee_values[1],
+        apogee_ground_range_m=apogee_values[2],
+        n_segments=len(segments),
+    )
     return frame
 
 
-def linear_theory_derivatives(model: RigidBodyModel, state, *, aerodynamics: bool = True,
-                              uniform_gravity: bool = False, frame_coupling: bool = False
-                              ) -> list:
+def linear_theory_derivatives(
+    model: RigidBodyModel,
+    state,
+    *,
+    aerodynamics: bool = True,
+    uniform_gravity: bool = False,
+    frame_coupling: bool = False,
+) -> list:
     """Time derivative of the 12 states under eqs L1-L4, L6 and L7 with every coefficient,
     gravity and the attitude at ``state`` itself: MLT's limit as segments shrink to nothing.
 
@@ -475,8 +611,9 @@ def linear_theory_derivatives(model: RigidBodyModel, state, *, aerodynamics: boo
     one dropped product that matters for HP: the no-roll frame's roll rate -r tan(theta)
     coupling w into v' and v into w' (``+ r tan(theta) w`` ... see :mod:`.sixdof`, step 3).
     """
-    c = segment_coefficients(model, state, aerodynamics=aerodynamics,
-                             uniform_gravity=uniform_gravity)
+    c = segment_coefficients(
+        model, state, aerodynamics=aerodynamics, uniform_gravity=uniform_gravity
+    )
     x, y, z, phi, theta, psi, u, v, w, p, q, r = state
     rows = _rotation(theta, psi)
     g_u, g_v, g_w = _apply(rows, c.gravity)
@@ -498,37 +635,64 @@ def linear_theory_derivatives(model: RigidBodyModel, state, *, aerodynamics: boo
     ]
 
 
-def simulate_linear_theory_limit(projectile: Projectile, *, elevation_deg: float = 50.0,
-                                 speed_m_s: float = 2022.0, spin_rad_s: float = 10.0,
-                                 crosswind_m_s: float = 5.0, atmosphere="two_segment",
-                                 density_altitude: str = "flat", frame_coupling: bool = False,
-                                 rtol: float = 1e-10, output_step_s: float = 0.5
-                                 ) -> pd.DataFrame:
+def simulate_linear_theory_limit(
+    projectile: Projectile,
+    *,
+    elevation_deg: float = 50.0,
+    speed_m_s: float = 2022.0,
+    spin_rad_s: float = 10.0,
+    crosswind_m_s: float = 5.0,
+    atmosphere="two_segment",
+    density_altitude: str = "flat",
+    frame_coupling: bool = False,
+    rtol: float = 1e-10,
+    output_step_s: float = 0.5,
+) -> pd.DataFrame:
     """:func:`linear_theory_derivatives` integrated by DOP853 from launch to impact: the limit
     MLT converges to, for measuring its segment error and the cost of the dropped products."""
     projectile = check_rigid_body(projectile, "linear theory")
     air = atmosphere if isinstance(atmosphere, AtmosphereModel) else get_atmosphere(atmosphere)
-    model = rigid_body_model(projectile, air, (0.0, finite_scalar(crosswind_m_s,
-                                                                  "crosswind_m_s"), 0.0),
-                             density_altitude)
+    model = rigid_body_model(
+        projectile, air, (0.0, finite_scalar(crosswind_m_s, "crosswind_m_s"), 0.0), density_altitude
+    )
 
     def impact(t, y):
         return _altitude(y)
 
     impact.terminal, impact.direction = True, -1
-    y0 = [0.0, 0.0, 0.0, 0.0, math.radians(elevation_deg), 0.0, speed_m_s, 0.0, 0.0,
-          spin_rad_s, 0.0, 0.0]
-    solution = solve_ivp(lambda t, y: linear_theory_derivatives(model, y.tolist(),
-                                                           frame_coupling=frame_coupling),
-                         (0.0, 400.0),
-                         y0, method="DOP853", rtol=rtol, atol=1e-9, dense_output=True,
-                         events=impact)
+    y0 = [
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        math.radians(elevation_deg),
+        0.0,
+        speed_m_s,
+        0.0,
+        0.0,
+        spin_rad_s,
+        0.0,
+        0.0,
+    ]
+    solution = solve_ivp(
+        lambda t, y: linear_theory_derivatives(model, y.tolist(), frame_coupling=frame_coupling),
+        (0.0, 400.0),
+        y0,
+        method="DOP853",
+        rtol=rtol,
+        atol=1e-9,
+        dense_output=True,
+        events=impact,
+    )
     end = float(solution.t[-1])
     times = np.append(np.arange(0.0, end, output_step_s), end)
     frame = trajectory_table(model, times, solution.sol(times))
     last = frame.iloc[-1]
-    frame.attrs.update(projectile=projectile.name, time_of_flight_s=end,
-                       range_m=float(last.ground_range_m),
-                       cross_range_m=float(last.cross_range_m),
-                       apogee_altitude_m=float(frame.altitude_m.max()))
+    frame.attrs.update(
+        projectile=projectile.name,
+        time_of_flight_s=end,
+        range_m=float(last.ground_range_m),
+        cross_range_m=float(last.cross_range_m),
+        apogee_altitude_m=float(frame.altitude_m.max()),
+    )
     return frame

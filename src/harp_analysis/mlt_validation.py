@@ -23,17 +23,26 @@ from .scenarios import max_distance_m
 from .sixdof import simulate_6dof
 from .validation import ModelValidityWarning
 
-__all__ = ["method_comparison", "mlt_max_position_difference_km",
-           "sixdof_convergence", "coefficient_point_convergence", "linear_theory_budget",
-           "inertia_comparison", "SEGMENT_LENGTHS_M"]
+__all__ = [
+    "method_comparison",
+    "mlt_max_position_difference_km",
+    "sixdof_convergence",
+    "coefficient_point_convergence",
+    "linear_theory_budget",
+    "inertia_comparison",
+    "SEGMENT_LENGTHS_M",
+]
 
 SEGMENT_LENGTHS_M = (2000.0, 1000.0, 500.0, 100.0)
 
 
 def _summary(flight: pd.DataFrame) -> dict:
-    return {"apogee_m": flight.attrs["apogee_altitude_m"], "range_m": flight.attrs["range_m"],
-            "time_of_flight_s": flight.attrs["time_of_flight_s"],
-            "cross_range_m": flight.attrs["cross_range_m"]}
+    return {
+        "apogee_m": flight.attrs["apogee_altitude_m"],
+        "range_m": flight.attrs["range_m"],
+        "time_of_flight_s": flight.attrs["time_of_flight_s"],
+        "cross_range_m": flight.attrs["cross_range_m"],
+    }
 
 
 @cache
@@ -42,20 +51,22 @@ def method_comparison(projectile: str, density_altitude: str = "spherical") -> p
     position difference along the flight and the differences of apogee, range, time of flight
     and cross range (method minus 6DOF), with the 6DOF's own values for scale."""
     six = scenarios.reference_6dof(projectile, density_altitude)
-    others = {"MLT": (scenarios.reference_mlt(projectile, density_altitude), False),
-              "3DOF": (scenarios.reference_3dof(projectile), True)}
+    others = {
+        "MLT": (scenarios.reference_mlt(projectile, density_altitude), False),
+        "3DOF": (scenarios.reference_3dof(projectile), True),
+    }
     reference = _summary(six)
     rows = {"6DOF (value)": {"max_position_difference_m": 0.0, **reference}}
     for name, (flight, three_dof) in others.items():
         values = _summary(flight)
         rows[f"{name} - 6DOF"] = {
             "max_position_difference_m": max_distance_m(six, flight, b_three_dof=three_dof),
-            **{key: values[key] - reference[key] for key in reference}}
+            **{key: values[key] - reference[key] for key in reference},
+        }
     return pd.DataFrame(rows).T
 
 
-def mlt_max_position_difference_km(projectile: str,
-                                   density_altitude: str = "spherical") -> float:
+def mlt_max_position_difference_km(projectile: str, density_altitude: str = "spherical") -> float:
     """The largest MLT-6DOF distance at the same time along the flight (km): the ledger's
     measure of "MLT predict the projectile motion accurately" (Ch. 2 B)."""
     table = method_comparison(projectile, density_altitude)
@@ -63,34 +74,51 @@ def mlt_max_position_difference_km(projectile: str,
 
 
 @cache
-def sixdof_convergence(projectile: str, density_altitude: str = "spherical",
-                       rtols: tuple = (1e-7, 1e-9, 1e-11)) -> pd.DataFrame:
+def sixdof_convergence(
+    projectile: str, density_altitude: str = "spherical", rtols: tuple = (1e-7, 1e-9, 1e-11)
+) -> pd.DataFrame:
     """The reference 6DOF (rtol 1e-9) against looser and tighter tolerances: the largest
     position difference along the flight and the apogee and range differences (m)."""
     p = get_projectile(projectile)
-    flights = {rtol: simulate_6dof(p, crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
-                                   density_altitude=density_altitude, rtol=rtol)
-               for rtol in rtols}
+    flights = {
+        rtol: simulate_6dof(
+            p,
+            crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
+            density_altitude=density_altitude,
+            rtol=rtol,
+        )
+        for rtol in rtols
+    }
     reference = scenarios.reference_6dof(projectile, density_altitude)
-    return pd.DataFrame({
-        rtol: {"max_position_difference_m": max_distance_m(reference, flight),
-               "apogee_difference_m": flight.attrs["apogee_altitude_m"]
-               - reference.attrs["apogee_altitude_m"],
-               "range_difference_m": flight.attrs["range_m"] - reference.attrs["range_m"],
-               "rhs_evaluations": flight.attrs["n_rhs"]}
-        for rtol, flight in flights.items()}).T.rename_axis("rtol")
+    return pd.DataFrame(
+        {
+            rtol: {
+                "max_position_difference_m": max_distance_m(reference, flight),
+                "apogee_difference_m": flight.attrs["apogee_altitude_m"]
+                - reference.attrs["apogee_altitude_m"],
+                "range_difference_m": flight.attrs["range_m"] - reference.attrs["range_m"],
+                "rhs_evaluations": flight.attrs["n_rhs"],
+            }
+            for rtol, flight in flights.items()
+        }
+    ).T.rename_axis("rtol")
 
 
 @cache
 def _limit(projectile: str, density_altitude: str, frame_coupling: bool = False):
     return mlt.simulate_linear_theory_limit(
-        get_projectile(projectile), crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
-        density_altitude=density_altitude, frame_coupling=frame_coupling, rtol=1e-11)
+        get_projectile(projectile),
+        crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
+        density_altitude=density_altitude,
+        frame_coupling=frame_coupling,
+        rtol=1e-11,
+    )
 
 
 @cache
-def coefficient_point_convergence(projectile: str, density_altitude: str = "spherical",
-                                  lengths_m: tuple = SEGMENT_LENGTHS_M) -> pd.DataFrame:
+def coefficient_point_convergence(
+    projectile: str, density_altitude: str = "spherical", lengths_m: tuple = SEGMENT_LENGTHS_M
+) -> pd.DataFrame:
     """Largest position difference (m) between MLT and its continuous limit for each
     coefficient evaluation point and segment length: the segment error alone."""
     limit = _limit(projectile, density_altitude)
@@ -99,10 +127,19 @@ def coefficient_point_convergence(projectile: str, density_altitude: str = "sphe
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelValidityWarning)
         for at in mlt.COEFFICIENT_POINTS:
-            rows[at] = {length: max_distance_m(limit, mlt.simulate_mlt(
-                p, crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
-                density_altitude=density_altitude, segment_length_m=length,
-                coefficients_at=at)) for length in lengths_m}
+            rows[at] = {
+                length: max_distance_m(
+                    limit,
+                    mlt.simulate_mlt(
+                        p,
+                        crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
+                        density_altitude=density_altitude,
+                        segment_length_m=length,
+                        coefficients_at=at,
+                    ),
+                )
+                for length in lengths_m
+            }
     return pd.DataFrame(rows).T.rename_axis("coefficients_at")
 
 
@@ -113,17 +150,26 @@ def linear_theory_budget(projectile: str, density_altitude: str = "spherical") -
     those the no-roll frame's roll-rate coupling alone (the limit with it restored)."""
     six = scenarios.reference_6dof(projectile, density_altitude)
     mlt_flight = scenarios.reference_mlt(projectile, density_altitude)
-    limit, coupled = _limit(projectile, density_altitude), _limit(projectile, density_altitude,
-                                                                  True)
-    pairs = {"segments (MLT 1 km - limit)": (mlt_flight, limit),
-             "dropped products (limit - 6DOF)": (limit, six),
-             "of which frame coupling (limit - limit with it)": (limit, coupled),
-             "the rest (limit with frame coupling - 6DOF)": (coupled, six)}
-    return pd.DataFrame({
-        name: {"max_position_difference_m": max_distance_m(a, b),
-               "cross_range_difference_m": a.attrs["cross_range_m"] - b.attrs["cross_range_m"],
-               "range_difference_m": a.attrs["range_m"] - b.attrs["range_m"]}
-        for name, (a, b) in pairs.items()}).T
+    limit, coupled = (
+        _limit(projectile, density_altitude),
+        _limit(projectile, density_altitude, True),
+    )
+    pairs = {
+        "segments (MLT 1 km - limit)": (mlt_flight, limit),
+        "dropped products (limit - 6DOF)": (limit, six),
+        "of which frame coupling (limit - limit with it)": (limit, coupled),
+        "the rest (limit with frame coupling - 6DOF)": (coupled, six),
+    }
+    return pd.DataFrame(
+        {
+            name: {
+                "max_position_difference_m": max_distance_m(a, b),
+                "cross_range_difference_m": a.attrs["cross_range_m"] - b.attrs["cross_range_m"],
+                "range_difference_m": a.attrs["range_m"] - b.attrs["range_m"],
+            }
+            for name, (a, b) in pairs.items()
+        }
+    ).T
 
 
 @cache
@@ -134,17 +180,23 @@ def inertia_comparison(density_altitude: str = "spherical") -> pd.DataFrame:
     rows = {}
     for name in ("HP", "HP_text", "LP", "LP_appendix_b"):
         p = get_projectile(name)
-        six = simulate_6dof(p, crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
-                            density_altitude=density_altitude)
+        six = simulate_6dof(
+            p, crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S, density_altitude=density_altitude
+        )
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ModelValidityWarning)
-            linear = mlt.simulate_mlt(p, crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
-                                      density_altitude=density_altitude)
+            linear = mlt.simulate_mlt(
+                p,
+                crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
+                density_altitude=density_altitude,
+            )
         for method, flight in (("6DOF", six), ("MLT", linear)):
             rows[name, method] = {
-                "pitch_inertia_kg_m2": p.pitch_inertia_kg_m2, "diameter_m": p.diameter_m,
+                "pitch_inertia_kg_m2": p.pitch_inertia_kg_m2,
+                "diameter_m": p.diameter_m,
                 **_summary(flight),
                 "max_angle_of_attack_deg": float(np.degrees(flight.angle_of_attack_rad.max())),
                 "max_difference_from_6dof_m": max_distance_m(six, flight),
-                "validity_warning": bool(caught) if method == "MLT" else False}
+                "validity_warning": bool(caught) if method == "MLT" else False,
+            }
     return pd.DataFrame(rows).T.rename_axis(["projectile", "method"])

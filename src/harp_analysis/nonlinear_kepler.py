@@ -43,10 +43,20 @@ from . import mks
 from .projectiles import Projectile
 from .validation import check_choice, check_range, finite_array, finite_scalar
 
-__all__ = ["FORMS", "TEXT_INITIAL_NATURAL_FREQUENCY", "NumericalKeplerSolution", "solve",
-           "solve_for_projectile", "driving_function", "natural_frequency",
-           "initial_natural_frequency", "frequency_response", "driving_rates",
-           "LinearisationError", "linearisation_error"]
+__all__ = [
+    "FORMS",
+    "TEXT_INITIAL_NATURAL_FREQUENCY",
+    "NumericalKeplerSolution",
+    "solve",
+    "solve_for_projectile",
+    "driving_function",
+    "natural_frequency",
+    "initial_natural_frequency",
+    "frequency_response",
+    "driving_rates",
+    "LinearisationError",
+    "linearisation_error",
+]
 
 #: The equations solved: eq 3.25 (= eq 3.9 with L of eq 3.23), eq 3.29 with tan(phi) = -u'/u
 #: (the same equation), eq 3.29 with tan(phi) frozen at launch, and eq 3.30 (omega_n = 1).
@@ -62,8 +72,8 @@ class _Launch:
     radius_m: float
     tan_phi0: float
     tau: float
-    beta_drive: float   # beta in the driving function (times drive_scale, eqs 6.9-6.10)
-    beta_decay: float   # beta in L = L_inf exp(beta gamma) (times decay_scale, eq 6.14)
+    beta_drive: float  # beta in the driving function (times drive_scale, eqs 6.9-6.10)
+    beta_decay: float  # beta in L = L_inf exp(beta gamma) (times decay_scale, eq 6.14)
     c3: float
 
     @classmethod
@@ -72,11 +82,14 @@ class _Launch:
             raise TypeError("solution must be an mks.ModifiedKeplerSolution")
         if not solution.single:
             raise ValueError("solution must describe a single launch")
-        return cls(float(solution.radius_m[0, 0]), float(np.tan(solution.elevation_rad[0, 0])),
-                   float(solution.tau[0, 0]),
-                   float(solution.beta[0, 0] * solution.drive_scale[0, 0]),
-                   float(solution.beta[0, 0] * solution.decay_scale[0, 0]),
-                   float(solution.c3[0, 0]))
+        return cls(
+            float(solution.radius_m[0, 0]),
+            float(np.tan(solution.elevation_rad[0, 0])),
+            float(solution.tau[0, 0]),
+            float(solution.beta[0, 0] * solution.drive_scale[0, 0]),
+            float(solution.beta[0, 0] * solution.decay_scale[0, 0]),
+            float(solution.c3[0, 0]),
+        )
 
 
 def _n_terms(n_terms):
@@ -103,8 +116,9 @@ def natural_frequency(solution: mks.ModifiedKeplerSolution, theta_rad, tan_phi=N
     slope = launch.tan_phi0 if tan_phi is None else finite_array(tan_phi, "tan_phi")
     theta = check_range(finite_array(theta_rad, "theta_rad"), "theta_rad", low=0.0, unit="rad")
     square = 1 + launch.tau * launch.beta_decay * slope * np.exp(-launch.tau * theta)
-    return np.sqrt(check_range(square, "tan_phi (omega_n^2 = 1 + tau beta tan(phi) gamma)",
-                               low=0.0))
+    return np.sqrt(
+        check_range(square, "tan_phi (omega_n^2 = 1 + tau beta tan(phi) gamma)", low=0.0)
+    )
 
 
 def initial_natural_frequency(solution: mks.ModifiedKeplerSolution) -> float:
@@ -121,8 +135,12 @@ def frequency_response(omega, natural_frequency):
     omega_n barely matters at s = tau, 2 tau. The large effect of eq 3.29's u-coefficient is on
     the homogeneous (ballistic) part of u, which this response does not show."""
     omega = check_range(finite_array(omega, "omega"), "omega", low=0.0)
-    omega_n = check_range(finite_array(natural_frequency, "natural_frequency"),
-                          "natural_frequency", low=0.0, low_inclusive=False)
+    omega_n = check_range(
+        finite_array(natural_frequency, "natural_frequency"),
+        "natural_frequency",
+        low=0.0,
+        low_inclusive=False,
+    )
     with np.errstate(divide="ignore"):
         return 1 / np.abs(omega_n**2 - omega**2)
 
@@ -140,17 +158,20 @@ def _second_derivative(launch: _Launch, form: str, n_terms):
 
     def drive(theta):
         x = -2 * launch.beta_drive * math.exp(-tau * theta)
-        return c3r0 * (math.exp(x) if factorials is None
-                       else sum(x**n / f for n, f in enumerate(factorials)))
+        return c3r0 * (
+            math.exp(x) if factorials is None else sum(x**n / f for n, f in enumerate(factorials))
+        )
 
     if form == "eq_3_25":
         return lambda theta, w, dw: drive(theta) - w + tau * beta * math.exp(-tau * theta) * dw
     if form == "eq_3_29":
-        return lambda theta, w, dw: drive(theta) - w * (
-            1 + tau * beta * (-dw / w) * math.exp(-tau * theta))
+        return lambda theta, w, dw: (
+            drive(theta) - w * (1 + tau * beta * (-dw / w) * math.exp(-tau * theta))
+        )
     if form == "eq_3_29_frozen":
-        return lambda theta, w, dw: drive(theta) - w * (
-            1 + tau * beta * launch.tan_phi0 * math.exp(-tau * theta))
+        return lambda theta, w, dw: (
+            drive(theta) - w * (1 + tau * beta * launch.tan_phi0 * math.exp(-tau * theta))
+        )
     return lambda theta, w, dw: drive(theta) - w
 
 
@@ -160,13 +181,18 @@ class NumericalKeplerSolution:
 
     form: str
     radius_m: float
-    apogee_angle: float     # rad, first zero of du/dtheta
-    impact_angle: float     # rad, return to the launch radius (nan if not within theta_max)
+    apogee_angle: float  # rad, first zero of du/dtheta
+    impact_angle: float  # rad, return to the launch radius (nan if not within theta_max)
     _dense: object
 
     def _w(self, theta_rad):
-        theta = check_range(finite_array(theta_rad, "theta_rad"), "theta_rad", low=0.0,
-                            high=self._dense.t_max, unit="rad")
+        theta = check_range(
+            finite_array(theta_rad, "theta_rad"),
+            "theta_rad",
+            low=0.0,
+            high=self._dense.t_max,
+            unit="rad",
+        )
         return self._dense(theta)
 
     def u(self, theta_rad):
@@ -191,8 +217,13 @@ class NumericalKeplerSolution:
         return self.radius_m * self.impact_angle
 
 
-def solve(solution: mks.ModifiedKeplerSolution, form: str = "eq_3_25", *, n_terms=None,
-          theta_max_rad: float = 2 * math.pi) -> NumericalKeplerSolution:
+def solve(
+    solution: mks.ModifiedKeplerSolution,
+    form: str = "eq_3_25",
+    *,
+    n_terms=None,
+    theta_max_rad: float = 2 * math.pi,
+) -> NumericalKeplerSolution:
     """Integrate ``form`` (one of :data:`FORMS`) for the launch of ``solution`` (its beta, tau,
     c3 and r0, u(0) = 1/r0, u'(0) = -tan(phi0)/r0, eq 3.28) up to impact or ``theta_max_rad``;
     ``n_terms`` truncates the series of eq 3.24 in the driving function only (None: the
@@ -208,23 +239,38 @@ def solve(solution: mks.ModifiedKeplerSolution, form: str = "eq_3_25", *, n_term
 
     def impact(theta, y):
         return y[0] - 1.0
+
     apogee.direction = impact.direction = 1.0
     impact.terminal = True
-    result = solve_ivp(lambda theta, y: (y[1], second(theta, y[0], y[1])), (0.0, theta_max),
-                       (1.0, -launch.tan_phi0), method="DOP853", rtol=1e-12, atol=1e-14,
-                       dense_output=True, events=(apogee, impact))
+    result = solve_ivp(
+        lambda theta, y: (y[1], second(theta, y[0], y[1])),
+        (0.0, theta_max),
+        (1.0, -launch.tan_phi0),
+        method="DOP853",
+        rtol=1e-12,
+        atol=1e-14,
+        dense_output=True,
+        events=(apogee, impact),
+    )
     if not result.success:
         raise RuntimeError(f"integration of {form} failed: {result.message}")
     first = [float(t[0]) if t.size else math.nan for t in result.t_events]
     return NumericalKeplerSolution(form, launch.radius_m, first[0], first[1], result.sol)
 
 
-def solve_for_projectile(projectile: Projectile, elevation_deg: float, form: str = "eq_3_25",
-                         *, n_terms=None, **mks_options) -> NumericalKeplerSolution:
+def solve_for_projectile(
+    projectile: Projectile,
+    elevation_deg: float,
+    form: str = "eq_3_25",
+    *,
+    n_terms=None,
+    **mks_options,
+) -> NumericalKeplerSolution:
     """:func:`solve` for ``projectile`` at ``elevation_deg`` (beta, tau from
     :func:`mks.for_projectile`, which ``mks_options`` are passed to)."""
-    launch = mks.for_projectile(projectile, finite_scalar(elevation_deg, "elevation_deg"),
-                                warn=False, **mks_options)
+    launch = mks.for_projectile(
+        projectile, finite_scalar(elevation_deg, "elevation_deg"), warn=False, **mks_options
+    )
     return solve(launch, form, n_terms=n_terms)
 
 
@@ -235,16 +281,28 @@ class LinearisationError(NamedTuple):
     range_m: float
 
 
-def linearisation_error(solution: mks.ModifiedKeplerSolution, form: str = "eq_3_25", *,
-                        n_terms=None, linear_terms: int = 30) -> LinearisationError:
+def linearisation_error(
+    solution: mks.ModifiedKeplerSolution,
+    form: str = "eq_3_25",
+    *,
+    n_terms=None,
+    linear_terms: int = 30,
+) -> LinearisationError:
     """Apogee and impact-range differences between ``form`` and eq 3.30 in closed form with
     ``linear_terms`` series terms (the size of Assumption 6 for that form)."""
     numerical = solve(solution, form, n_terms=n_terms)
     linear = mks.ModifiedKeplerSolution(
-        solution.speed_m_s[0, 0], solution.elevation_rad[0, 0], solution.beta[0, 0],
-        solution.tau[0, 0], n_terms=linear_terms, radius_m=solution.radius_m[0, 0],
-        drive_scale=solution.drive_scale[0, 0], decay_scale=solution.decay_scale[0, 0],
-        warn=False)
+        solution.speed_m_s[0, 0],
+        solution.elevation_rad[0, 0],
+        solution.beta[0, 0],
+        solution.tau[0, 0],
+        n_terms=linear_terms,
+        radius_m=solution.radius_m[0, 0],
+        drive_scale=solution.drive_scale[0, 0],
+        decay_scale=solution.decay_scale[0, 0],
+        warn=False,
+    )
     return LinearisationError(
         numerical.apogee_altitude() - float(linear.apogee_altitude()),
-        numerical.impact_range_m - float(linear.impact_angle * linear.radius_m[0, 0]))
+        numerical.impact_range_m - float(linear.impact_angle * linear.radius_m[0, 0]),
+    )

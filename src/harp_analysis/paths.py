@@ -21,7 +21,8 @@ import os
 from importlib import resources
 from pathlib import Path
 
-__all__ = ["ROOT", "DATA_DIR", "HARP_DATA_DIR", "FIGURES_DIR", "NOTEBOOKS_DIR", "REGISTRY_DIR"]
+# The checkout folders are served by __getattr__ below.
+__all__ = ["ROOT", "DATA_DIR", "HARP_DATA_DIR", "FIGURES_DIR", "NOTEBOOKS_DIR", "REGISTRY_DIR"]  # noqa: F822
 
 HARP_DATA_DIR = Path(str(resources.files("harp_analysis") / "_data" / "harp"))
 
@@ -36,8 +37,9 @@ _ROOT = _find_root()
 _IN_CHECKOUT = {
     "ROOT": lambda root: root,
     "DATA_DIR": lambda root: root / "data",
-    "FIGURES_DIR": lambda root: Path(os.environ.get("HARP_ANALYSIS_FIGURES_DIR",
-                                                    root / "figures")).resolve(),
+    "FIGURES_DIR": lambda root: Path(
+        os.environ.get("HARP_ANALYSIS_FIGURES_DIR", root / "figures")
+    ).resolve(),
     "NOTEBOOKS_DIR": lambda root: root / "notebooks",
     "REGISTRY_DIR": lambda root: root / "registry",
 }
@@ -50,5 +52,6 @@ def __getattr__(name: str) -> Path:
         raise RuntimeError(
             f"harp_analysis.paths.{name} needs the repository checkout (registry, figures, "
             "notebooks), and none was found beside the installed package. Install with "
-            "`pip install -e .` from a checkout, or set HARP_ANALYSIS_ROOT to its path.")
+            "`pip install -e .` from a checkout, or set HARP_ANALYSIS_ROOT to its path."
+        )
     return _IN_CHECKOUT[name](_ROOT)

@@ -60,8 +60,14 @@ def save_table(frame, number: str, note: str = "") -> Path:
 
     path = figure_file(number)
     header = "| | " + " | ".join(map(str, frame.columns)) + " |"
-    lines = [f"# {number}: {get_entry(number).title}", "", note, "", header,
-             "|---" * (len(frame.columns) + 1) + "|"]
+    lines = [
+        f"# {number}: {get_entry(number).title}",
+        "",
+        note,
+        "",
+        header,
+        "|---" * (len(frame.columns) + 1) + "|",
+    ]
     for index, row in frame.iterrows():
         cells = (f"{value:.5g}" if isinstance(value, float) else str(value) for value in row)
         lines.append(f"| {index} | " + " | ".join(cells) + " |")

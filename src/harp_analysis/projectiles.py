@@ -23,8 +23,17 @@ from dataclasses import dataclass
 from .drag import BASELINE_CONE, M829, AeroTables
 from .validation import check_choice, check_range, finite_scalar
 
-__all__ = ["Projectile", "HP", "HP_TEXT", "LP", "LP_APPENDIX_B", "BASELINE",
-           "get_projectile", "check_rigid_body", "PROJECTILE_NAMES"]
+__all__ = [
+    "Projectile",
+    "HP",
+    "HP_TEXT",
+    "LP",
+    "LP_APPENDIX_B",
+    "BASELINE",
+    "get_projectile",
+    "check_rigid_body",
+    "PROJECTILE_NAMES",
+]
 
 _SCALE_LP_TO_HP = (15.66 / 5.029) * (0.0395 / 0.0256) ** 2  # Appendix B's inertia scaling
 
@@ -46,12 +55,14 @@ class Projectile:
 
     def __post_init__(self):
         for name in ("mass_kg", "reference_area_m2", "launch_speed_m_s"):
-            check_range(finite_scalar(getattr(self, name), name), name, low=0.0,
-                        low_inclusive=False)
+            check_range(
+                finite_scalar(getattr(self, name), name), name, low=0.0, low_inclusive=False
+            )
         for name in ("diameter_m", "roll_inertia_kg_m2", "pitch_inertia_kg_m2"):
             if getattr(self, name) is not None:
-                check_range(finite_scalar(getattr(self, name), name), name, low=0.0,
-                            low_inclusive=False)
+                check_range(
+                    finite_scalar(getattr(self, name), name), name, low=0.0, low_inclusive=False
+                )
 
     @property
     def launch_energy_j(self) -> float:
@@ -60,19 +71,53 @@ class Projectile:
 
 
 def _m829_round(name, mass_kg, diameter_m, roll, pitch, source) -> Projectile:
-    return Projectile(name, mass_kg, math.pi / 4 * diameter_m**2, M829.zero_yaw_drag(), 2022.0,
-                      source, diameter_m, roll, pitch, M829)
+    return Projectile(
+        name,
+        mass_kg,
+        math.pi / 4 * diameter_m**2,
+        M829.zero_yaw_drag(),
+        2022.0,
+        source,
+        diameter_m,
+        roll,
+        pitch,
+        M829,
+    )
 
 
-HP = _m829_round("HP", 15.66, 0.0395, _SCALE_LP_TO_HP * 0.00033, _SCALE_LP_TO_HP * 0.24021,
-                 "Ch. 2 A mass and diameter; inertias as Appendix B's code scales them")
-HP_TEXT = _m829_round("HP_text", 15.66, 0.0395, 0.00853, 6.20934,
-                      "Ch. 2 A: mass, diameter and inertias as the text states them")
+HP = _m829_round(
+    "HP",
+    15.66,
+    0.0395,
+    _SCALE_LP_TO_HP * 0.00033,
+    _SCALE_LP_TO_HP * 0.24021,
+    "Ch. 2 A mass and diameter; inertias as Appendix B's code scales them",
+)
+HP_TEXT = _m829_round(
+    "HP_text",
+    15.66,
+    0.0395,
+    0.00853,
+    6.20934,
+    "Ch. 2 A: mass, diameter and inertias as the text states them",
+)
 LP = _m829_round("LP", 5.029, 0.0268, 0.00033, 0.24021, "Ch. 2 A, as the text states it")
-LP_APPENDIX_B = _m829_round("LP_appendix_b", 5.029, 0.0256, 0.00033, 0.24021,
-                            "Ch. 2 A with the 0.0256 m diameter of Appendix B's inertia scaling")
-BASELINE = Projectile("baseline", 11.6, 0.008, BASELINE_CONE, 2157.0,
-                      "Ch. 4 B: 4 deg half-angle cone, 11.6 kg, base area 0.008 m^2, eq 4.8")
+LP_APPENDIX_B = _m829_round(
+    "LP_appendix_b",
+    5.029,
+    0.0256,
+    0.00033,
+    0.24021,
+    "Ch. 2 A with the 0.0256 m diameter of Appendix B's inertia scaling",
+)
+BASELINE = Projectile(
+    "baseline",
+    11.6,
+    0.008,
+    BASELINE_CONE,
+    2157.0,
+    "Ch. 4 B: 4 deg half-angle cone, 11.6 kg, base area 0.008 m^2, eq 4.8",
+)
 
 _PROJECTILES = {p.name: p for p in (HP, HP_TEXT, LP, LP_APPENDIX_B, BASELINE)}
 PROJECTILE_NAMES = tuple(_PROJECTILES)
@@ -88,10 +133,15 @@ def check_rigid_body(projectile, needed_by: str) -> Projectile:
     tables, a diameter and roll and pitch inertias; otherwise a named error."""
     if not isinstance(projectile, Projectile):
         raise TypeError(f"projectile must be a Projectile; got {type(projectile).__name__}")
-    missing = [name for name in ("aero", "diameter_m", "roll_inertia_kg_m2",
-                                 "pitch_inertia_kg_m2") if getattr(projectile, name) is None]
+    missing = [
+        name
+        for name in ("aero", "diameter_m", "roll_inertia_kg_m2", "pitch_inertia_kg_m2")
+        if getattr(projectile, name) is None
+    ]
     if missing:
-        raise ValueError(f"projectile {projectile.name!r} has no {', '.join(missing)}: "
-                         f"{needed_by} needs aerodynamic tables, a diameter and roll and pitch "
-                         "inertias")
+        raise ValueError(
+            f"projectile {projectile.name!r} has no {', '.join(missing)}: "
+            f"{needed_by} needs aerodynamic tables, a diameter and roll and pitch "
+            "inertias"
+        )
     return projectile

@@ -20,8 +20,17 @@ from pathlib import Path
 
 from . import paths
 
-__all__ = ["RegistryEntry", "load_registry", "load_toml_rows", "get_entry", "figure_file", "render_gallery",
-           "CLASSES", "STATUSES", "INDEX_FILES"]
+__all__ = [
+    "RegistryEntry",
+    "load_registry",
+    "load_toml_rows",
+    "get_entry",
+    "figure_file",
+    "render_gallery",
+    "CLASSES",
+    "STATUSES",
+    "INDEX_FILES",
+]
 
 CLASSES = ("data", "schematic", "partial", "not reproducible")
 STATUSES = ("reproduced", "deviates", "partial", "pending", "not reproducible")
@@ -60,16 +69,26 @@ def _entry(raw: dict, position: int, source: Path) -> RegistryEntry:
     drawn = ("reproduced", "deviates", "partial")
     if raw["status"] in drawn and not (raw["notebook"] and raw["file"]):
         raise ValueError(f"{where}: a {raw['status']} entry needs its notebook and file")
-    return RegistryEntry(raw["number"], raw["kind"], raw["title"], raw["class"],
-                         raw["notebook"], raw["file"], raw["status"], raw["reason"])
+    return RegistryEntry(
+        raw["number"],
+        raw["kind"],
+        raw["title"],
+        raw["class"],
+        raw["notebook"],
+        raw["file"],
+        raw["status"],
+        raw["reason"],
+    )
 
 
 def load_toml_rows(path: Path, table: str, build, key: str) -> tuple:
     """Rows ``[[table]]`` of the TOML file ``path``, each made by ``build(raw, position,
     path)``; raises naming the file if two rows share the same ``key`` attribute."""
     with open(path, "rb") as handle:
-        rows = tuple(build(raw, i, path)
-                     for i, raw in enumerate(tomllib.load(handle).get(table, []), start=1))
+        rows = tuple(
+            build(raw, i, path)
+            for i, raw in enumerate(tomllib.load(handle).get(table, []), start=1)
+        )
     keys = [getattr(row, key) for row in rows]
     duplicates = sorted({k for k in keys if keys.count(k) > 1})
     if duplicates:
@@ -96,8 +115,10 @@ def figure_file(number: str) -> Path:
     """Where figure ``number`` is written: ``figures/`` plus the registry's file name."""
     entry = get_entry(number)
     if not entry.file:
-        raise ValueError(f"number {number!r}: the registry gives no output file "
-                         f"(status {entry.status!r}: {entry.reason})")
+        raise ValueError(
+            f"number {number!r}: the registry gives no output file "
+            f"(status {entry.status!r}: {entry.reason})"
+        )
     return paths.FIGURES_DIR / entry.file
 
 
@@ -119,14 +140,23 @@ def render_gallery(target: Path | None = None) -> Path:
     ]
     for e in entries:
         notebook = f"[{e.notebook}](../notebooks/{e.notebook})" if e.notebook else ""
-        lines.append(f"| {e.label} | {e.title} | {e.figure_class} | {e.status} | {notebook} "
-                     f"| {e.reason} |")
+        lines.append(
+            f"| {e.label} | {e.title} | {e.figure_class} | {e.status} | {notebook} | {e.reason} |"
+        )
     lines.append("")
     for e in entries:
         if e.status in ("reproduced", "deviates", "partial"):
-            shown = f"![{e.label}]({e.file})" if e.file.endswith(".png") else f"[{e.file}]({e.file})"
-            lines += [f"## {e.label}: {e.title}", "", f"Status: {e.status}. Drawn by "
-                      f"`notebooks/{e.notebook}`.", "", shown, ""]
+            shown = (
+                f"![{e.label}]({e.file})" if e.file.endswith(".png") else f"[{e.file}]({e.file})"
+            )
+            lines += [
+                f"## {e.label}: {e.title}",
+                "",
+                f"Status: {e.status}. Drawn by `notebooks/{e.notebook}`.",
+                "",
+                shown,
+                "",
+            ]
     target.parent.mkdir(parents=True, exist_ok=True)
     target.write_text("\n".join(lines))
     return target

@@ -2,7 +2,8 @@
 
 Chapter 2 A: HP and LP launched at 50 deg and 2022 m/s through the two-segment atmosphere of
 eqs 2.1-2.2 with a 5 m/s cross wind, simulated in 3DOF, 6DOF and Modified Linear Theory (MLT);
-Table 4.1 adds the baseline cone. Flights are cached, so the notebook and the claims ledger share one run of each.
+Table 4.1 adds the baseline cone. Flights are cached, so the notebook and the claims ledger
+share one run of each.
 Functions take projectile names (see :data:`harp_analysis.projectiles.PROJECTILE_NAMES`) so the
 ledger can call them with plain arguments.
 """
@@ -16,32 +17,51 @@ import pandas as pd
 
 from . import earth
 from .atmosphere import get_atmosphere
-from .projectiles import get_projectile
 from .mlt import simulate_mlt
+from .projectiles import get_projectile
 from .sixdof import simulate_6dof
 from .threedof import simulate_3dof
 from .validation import check_choice, check_range, finite_scalar
 
-__all__ = ["REFERENCE_ELEVATION_DEG", "REFERENCE_CROSSWIND_M_S", "reference_3dof",
-           "reference_6dof", "reference_mlt", "RIGID_BODY_METHODS", "rigid_body_flight",
-           "max_distance_m", "max_position_difference_km", "swerve",
-           "angle_of_attack_at_apogee_deg",
-           "launch_drag_to_gravity", "drag_to_gravity_crossing_altitude_km",
-           "max_drag_to_gravity_above", "angular_momentum_loss_share_below",
-           "angular_momentum_change_above", "launch_energy_mj"]
+__all__ = [
+    "REFERENCE_ELEVATION_DEG",
+    "REFERENCE_CROSSWIND_M_S",
+    "reference_3dof",
+    "reference_6dof",
+    "reference_mlt",
+    "RIGID_BODY_METHODS",
+    "rigid_body_flight",
+    "max_distance_m",
+    "max_position_difference_km",
+    "swerve",
+    "angle_of_attack_at_apogee_deg",
+    "launch_drag_to_gravity",
+    "drag_to_gravity_crossing_altitude_km",
+    "max_drag_to_gravity_above",
+    "angular_momentum_loss_share_below",
+    "angular_momentum_change_above",
+    "launch_energy_mj",
+]
 
 REFERENCE_ELEVATION_DEG = 50.0  # Chapter 2 A: theta = 50 deg
-REFERENCE_CROSSWIND_M_S = 5.0   # Chapter 2 A: "a 5 m/s cross wind"
+REFERENCE_CROSSWIND_M_S = 5.0  # Chapter 2 A: "a 5 m/s cross wind"
 _FINE_STEP_S = 0.01
 
 
 @cache
-def reference_3dof(projectile: str, cross_wind_m_s: float = REFERENCE_CROSSWIND_M_S,
-                   output_step_s: float = _FINE_STEP_S) -> pd.DataFrame:
+def reference_3dof(
+    projectile: str,
+    cross_wind_m_s: float = REFERENCE_CROSSWIND_M_S,
+    output_step_s: float = _FINE_STEP_S,
+) -> pd.DataFrame:
     """The 3DOF flight of ``projectile`` in Chapter 2 A's conditions (Fig 4.8 and Table 4.1
     fly the same launch "with no wind": ``cross_wind_m_s=0``)."""
-    return simulate_3dof(get_projectile(projectile), REFERENCE_ELEVATION_DEG,
-                         cross_wind_m_s=cross_wind_m_s, output_step_s=output_step_s)
+    return simulate_3dof(
+        get_projectile(projectile),
+        REFERENCE_ELEVATION_DEG,
+        cross_wind_m_s=cross_wind_m_s,
+        output_step_s=output_step_s,
+    )
 
 
 def launch_energy_mj(projectile: str) -> float:
@@ -49,16 +69,20 @@ def launch_energy_mj(projectile: str) -> float:
     return get_projectile(projectile).launch_energy_j / 1e6
 
 
-def launch_drag_to_gravity(projectile: str, atmosphere: str = "two_segment",
-                           gravity_m_s2: float | None = None) -> float:
+def launch_drag_to_gravity(
+    projectile: str, atmosphere: str = "two_segment", gravity_m_s2: float | None = None
+) -> float:
     """Drag over weight at the muzzle (Table 4.1): 1/2 rho0 V0^2 Cd(Ma0) A / (m g).
 
     ``gravity_m_s2`` defaults to the simulations' GM/R^2 (9.7987 m/s^2).
     """
     p = get_projectile(projectile)
     air = get_atmosphere(atmosphere)
-    g = earth.surface_gravity_m_s2() if gravity_m_s2 is None else finite_scalar(gravity_m_s2,
-                                                                                "gravity_m_s2")
+    g = (
+        earth.surface_gravity_m_s2()
+        if gravity_m_s2 is None
+        else finite_scalar(gravity_m_s2, "gravity_m_s2")
+    )
     mach = p.launch_speed_m_s / air.speed_of_sound(0.0)
     drag = 0.5 * air.density(0.0) * p.launch_speed_m_s**2 * p.drag_law(mach) * p.reference_area_m2
     return float(drag / (p.mass_kg * g))
@@ -107,26 +131,37 @@ def angular_momentum_change_above(projectile: str, altitude_km: float = 40.0) ->
 def reference_6dof(projectile: str, density_altitude: str = "flat") -> pd.DataFrame:
     """The 6DOF flight of ``projectile`` in Chapter 2 A's conditions (Appendix B's port; its
     atmosphere at the flat-frame altitude unless ``density_altitude="spherical"``)."""
-    return simulate_6dof(get_projectile(projectile), elevation_deg=REFERENCE_ELEVATION_DEG,
-                         crosswind_m_s=REFERENCE_CROSSWIND_M_S, density_altitude=density_altitude)
+    return simulate_6dof(
+        get_projectile(projectile),
+        elevation_deg=REFERENCE_ELEVATION_DEG,
+        crosswind_m_s=REFERENCE_CROSSWIND_M_S,
+        density_altitude=density_altitude,
+    )
 
 
 @cache
-def reference_mlt(projectile: str, density_altitude: str = "flat",
-                  segment_length_m: float = 1000.0, coefficients_at: str = "middle"
-                  ) -> pd.DataFrame:
+def reference_mlt(
+    projectile: str,
+    density_altitude: str = "flat",
+    segment_length_m: float = 1000.0,
+    coefficients_at: str = "middle",
+) -> pd.DataFrame:
     """The MLT flight of ``projectile`` in Chapter 2 A's conditions (:mod:`.mlt`), with the
     6DOF's atmosphere altitude convention ``density_altitude``."""
-    return simulate_mlt(get_projectile(projectile), elevation_deg=REFERENCE_ELEVATION_DEG,
-                        crosswind_m_s=REFERENCE_CROSSWIND_M_S, density_altitude=density_altitude,
-                        segment_length_m=segment_length_m, coefficients_at=coefficients_at)
+    return simulate_mlt(
+        get_projectile(projectile),
+        elevation_deg=REFERENCE_ELEVATION_DEG,
+        crosswind_m_s=REFERENCE_CROSSWIND_M_S,
+        density_altitude=density_altitude,
+        segment_length_m=segment_length_m,
+        coefficients_at=coefficients_at,
+    )
 
 
 RIGID_BODY_METHODS = ("6DOF", "MLT")
 
 
-def rigid_body_flight(method: str, projectile: str, density_altitude: str = "flat"
-                      ) -> pd.DataFrame:
+def rigid_body_flight(method: str, projectile: str, density_altitude: str = "flat") -> pd.DataFrame:
     """The cached reference flight of a rigid-body ``method`` (:data:`RIGID_BODY_METHODS`)."""
     check_choice(method, "method", RIGID_BODY_METHODS)
     return (reference_6dof if method == "6DOF" else reference_mlt)(projectile, density_altitude)
@@ -144,8 +179,9 @@ def _launch_axes(flight: pd.DataFrame, six_dof: bool) -> np.ndarray:
     return np.column_stack([flight.x_m, flight.y_m, -flight.z_m])
 
 
-def max_distance_m(a: pd.DataFrame, b: pd.DataFrame, *, a_three_dof: bool = False,
-                   b_three_dof: bool = False) -> float:
+def max_distance_m(
+    a: pd.DataFrame, b: pd.DataFrame, *, a_three_dof: bool = False, b_three_dof: bool = False
+) -> float:
     """Largest distance (m) between flights ``a`` and ``b`` at ``a``'s times inside both (each
     a 6DOF/MLT flat-frame table, or a 3DOF table when flagged)."""
     a = a[a.time_s <= b.time_s.iloc[-1]]
@@ -154,12 +190,19 @@ def max_distance_m(a: pd.DataFrame, b: pd.DataFrame, *, a_three_dof: bool = Fals
     return float(np.max(np.linalg.norm(_launch_axes(a, six_dof=not a_three_dof) - at, axis=1)))
 
 
-def max_position_difference_km(projectile: str, density_altitude: str = "flat",
-                               method: str = "6DOF") -> float:
+def max_position_difference_km(
+    projectile: str, density_altitude: str = "flat", method: str = "6DOF"
+) -> float:
     """Largest distance (km) between the 3DOF's position and a rigid-body ``method``'s at the
     same time."""
-    return max_distance_m(rigid_body_flight(method, projectile, density_altitude),
-                          reference_3dof(projectile), b_three_dof=True) / 1e3
+    return (
+        max_distance_m(
+            rigid_body_flight(method, projectile, density_altitude),
+            reference_3dof(projectile),
+            b_three_dof=True,
+        )
+        / 1e3
+    )
 
 
 def swerve(projectile: str, method: str = "6DOF") -> pd.DataFrame:
@@ -169,12 +212,20 @@ def swerve(projectile: str, method: str = "6DOF") -> pd.DataFrame:
     six = rigid_body_flight(method, projectile, "flat")
     six = six[six.time_s <= three.time_s.iloc[-1]]
     cross3 = np.interp(six.time_s, three.time_s, three.cross_range_m)
-    return pd.DataFrame({"time_s": six.time_s, "ground_range_m": six.ground_range_m,
-                         "swerve_m": six.cross_range_m - cross3})
+    return pd.DataFrame(
+        {
+            "time_s": six.time_s,
+            "ground_range_m": six.ground_range_m,
+            "swerve_m": six.cross_range_m - cross3,
+        }
+    )
 
 
 def angle_of_attack_at_apogee_deg(projectile: str) -> float:
     """Total angle of attack (deg) of the 6DOF reference flight at apogee (Ch. 4 A)."""
     flight = reference_6dof(projectile)
-    return float(np.degrees(np.interp(flight.attrs["apogee_time_s"], flight.time_s,
-                                      flight.angle_of_attack_rad)))
+    return float(
+        np.degrees(
+            np.interp(flight.attrs["apogee_time_s"], flight.time_s, flight.angle_of_attack_rad)
+        )
+    )

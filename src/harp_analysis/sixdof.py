@@ -95,14 +95,29 @@ from .projectiles import Projectile, check_rigid_body
 from .trajectory import BASE_COLUMNS, flight_path_angle, surface_ranges
 from .validation import check_choice, check_range, finite_array, finite_scalar
 
-__all__ = ["STATE_NAMES", "DENSITY_ALTITUDES", "EXTRA_COLUMNS", "RigidBodyModel",
-           "rigid_body_model", "appendix_b_derivatives", "no_roll_derivatives",
-           "trajectory_table", "simulate_6dof", "integrate_fixed_step"]
+__all__ = [
+    "STATE_NAMES",
+    "DENSITY_ALTITUDES",
+    "EXTRA_COLUMNS",
+    "RigidBodyModel",
+    "rigid_body_model",
+    "appendix_b_derivatives",
+    "no_roll_derivatives",
+    "trajectory_table",
+    "simulate_6dof",
+    "integrate_fixed_step",
+]
 
 STATE_NAMES = ("x", "y", "z", "phi", "theta", "psi", "u", "v", "w", "p", "q", "r")
 DENSITY_ALTITUDES = ("flat", "spherical")
-EXTRA_COLUMNS = ("altitude_flat_m", "angle_of_attack_rad", "roll_rate_rad_s", "roll_rad",
-                 "pitch_rad", "yaw_rad")
+EXTRA_COLUMNS = (
+    "altitude_flat_m",
+    "angle_of_attack_rad",
+    "roll_rate_rad_s",
+    "roll_rad",
+    "pitch_rad",
+    "yaw_rad",
+)
 
 _R = earth.RADIUS_M
 _GM = earth.GM_M3_S2
@@ -117,8 +132,13 @@ _SINGULAR_COS = 1e-6
 class RigidBodyModel:
     """Constants of one projectile in one atmosphere and wind; the two derivative functions."""
 
-    def __init__(self, projectile: Projectile, atmosphere: AtmosphereModel, wind_m_s: tuple,
-                 density_altitude: str):
+    def __init__(
+        self,
+        projectile: Projectile,
+        atmosphere: AtmosphereModel,
+        wind_m_s: tuple,
+        density_altitude: str,
+    ):
         self.mass = projectile.mass_kg
         self.ix = projectile.roll_inertia_kg_m2
         self.iy = projectile.pitch_inertia_kg_m2  # Iz = Iy (Appendix B)
@@ -151,18 +171,34 @@ class RigidBodyModel:
         c_theta, s_theta, t_theta = math.cos(theta), math.sin(theta), math.tan(theta)
         c_phi, s_phi = math.cos(phi), math.sin(phi)
         c_psi, s_psi = math.cos(psi), math.sin(psi)
-        tib = np.array([
-            [c_theta * c_psi, c_theta * s_psi, -s_theta],
-            [s_phi * s_theta * c_psi - c_phi * s_psi, s_phi * s_theta * s_psi + c_phi * c_psi,
-             s_phi * c_theta],
-            [c_phi * s_theta * c_psi + s_phi * s_psi, c_phi * s_theta * s_psi - s_phi * c_psi,
-             c_phi * c_theta]])
-        kinematic = np.array([[1.0, s_phi * t_theta, c_phi * t_theta],
-                              [0.0, c_phi, -s_phi],
-                              [0.0, s_phi / c_theta, c_phi / c_theta]])
+        tib = np.array(
+            [
+                [c_theta * c_psi, c_theta * s_psi, -s_theta],
+                [
+                    s_phi * s_theta * c_psi - c_phi * s_psi,
+                    s_phi * s_theta * s_psi + c_phi * c_psi,
+                    s_phi * c_theta,
+                ],
+                [
+                    c_phi * s_theta * c_psi + s_phi * s_psi,
+                    c_phi * s_theta * s_psi - s_phi * c_psi,
+                    c_phi * c_theta,
+                ],
+            ]
+        )
+        kinematic = np.array(
+            [
+                [1.0, s_phi * t_theta, c_phi * t_theta],
+                [0.0, c_phi, -s_phi],
+                [0.0, s_phi / c_theta, c_phi / c_theta],
+            ]
+        )
         # (6378 - z/1000)^2 + (x/1000)^2 km^2 with GM*1000 km^3/s^2 is this in SI; no y^2.
-        weight = (self.mass * _GM / ((_R - z) ** 2 + x ** 2)) * tib @ (
-            np.array([-x, -y, _R - z]) / math.sqrt(x * x + y * y + (_R - z) ** 2))
+        weight = (
+            (self.mass * _GM / ((_R - z) ** 2 + x**2))
+            * tib
+            @ (np.array([-x, -y, _R - z]) / math.sqrt(x * x + y * y + (_R - z) ** 2))
+        )
         sw = np.array([[0.0, -r, q], [r, 0.0, -p], [-q, p, 0.0]])
         inertia = np.diag([self.ix, self.iy, self.iy])
         velocity, rates = np.array([u, v, w]), np.array([p, q, r])
@@ -172,19 +208,32 @@ class RigidBodyModel:
         rho, sound = self.air(x, y, z)
         cx0, cx2, cna, cypa, cmq, clp, cldd, dx, dxmag = self.coefficients(big_v / sound)
         d = self.d
-        qa = 0.125 * math.pi * rho * big_v ** 2 * d ** 2
-        fsa = qa * np.array([cx0 + cx2 * (va ** 2 + wa ** 2) / big_v ** 2, -cna * va / big_v,
-                             -cna * wa / big_v])
-        fmag = 0.0625 * rho * math.pi * d ** 3 * p * cypa * np.array([0.0, wa, -va])
+        qa = 0.125 * math.pi * rho * big_v**2 * d**2
+        fsa = qa * np.array(
+            [cx0 + cx2 * (va**2 + wa**2) / big_v**2, -cna * va / big_v, -cna * wa / big_v]
+        )
+        fmag = 0.0625 * rho * math.pi * d**3 * p * cypa * np.array([0.0, wa, -va])
         msa = qa * cna * dx * np.array([0.0, wa / big_v, -va / big_v])
-        mua = qa * d * np.array([cldd + p * clp * d / (2 * big_v), q * cmq * d / (2 * big_v),
-                                 r * cmq * d / (2 * big_v)])
-        mmag = 0.0625 * rho * math.pi * d ** 3 * p * cypa * dxmag * np.array([0.0, va, wa])
-        return np.concatenate([
-            tib.T @ velocity,
-            kinematic @ rates,
-            (fsa + fmag + weight) / self.mass - sw @ velocity,
-            np.linalg.solve(inertia, msa + mua + mmag - sw @ inertia @ rates)])
+        mua = (
+            qa
+            * d
+            * np.array(
+                [
+                    cldd + p * clp * d / (2 * big_v),
+                    q * cmq * d / (2 * big_v),
+                    r * cmq * d / (2 * big_v),
+                ]
+            )
+        )
+        mmag = 0.0625 * rho * math.pi * d**3 * p * cypa * dxmag * np.array([0.0, va, wa])
+        return np.concatenate(
+            [
+                tib.T @ velocity,
+                kinematic @ rates,
+                (fsa + fmag + weight) / self.mass - sw @ velocity,
+                np.linalg.solve(inertia, msa + mua + mmag - sw @ inertia @ rates),
+            ]
+        )
 
     def aero_no_roll(self, x, y, z, c_theta, s_theta, c_psi, s_psi, u, v, w, p, q, r):
         """Aerodynamic force and moment in the no-roll frame, air-relative velocity (same
@@ -200,14 +249,16 @@ class RigidBodyModel:
         cx0, cx2, cna, cypa, cmq, clp, cldd, dx, dxmag = self.coefficients(mach)
         d = self.d
         qa = 0.125 * math.pi * rho * big_v * big_v * d * d
-        magnus = 0.0625 * rho * math.pi * d ** 3 * p * cypa
+        magnus = 0.0625 * rho * math.pi * d**3 * p * cypa
         axial = cx0 + cx2 * lateral / (big_v * big_v)
         normal = qa * cna / big_v
         damping = qa * d * d * cmq / (2.0 * big_v)
         force = (qa * axial, -normal * va + magnus * wa, -normal * wa - magnus * va)
-        moment = (qa * d * (cldd + p * clp * d / (2.0 * big_v)),
-                  normal * dx * wa + damping * q + magnus * dxmag * va,
-                  -normal * dx * va + damping * r + magnus * dxmag * wa)
+        moment = (
+            qa * d * (cldd + p * clp * d / (2.0 * big_v)),
+            normal * dx * wa + damping * q + magnus * dxmag * va,
+            -normal * dx * va + damping * r + magnus * dxmag * wa,
+        )
         return force, moment, (ua, va, wa), mach, -axial
 
     def no_roll(self, t, state) -> list:
@@ -218,7 +269,8 @@ class RigidBodyModel:
         t_theta = s_theta / c_theta
         c_psi, s_psi = math.cos(psi), math.sin(psi)
         (fx, fy, fz), (mx, my, mz), *_ = self.aero_no_roll(
-            x, y, z, c_theta, s_theta, c_psi, s_psi, u, v, w, p, q, r)
+            x, y, z, c_theta, s_theta, c_psi, s_psi, u, v, w, p, q, r
+        )
         # Weight per unit mass, Appendix B's magnitude (no y^2), resolved in N.
         radius = math.sqrt(x * x + y * y + (_R - z) ** 2)
         g = _GM / (((_R - z) ** 2 + x * x) * radius)
@@ -260,8 +312,12 @@ def rigid_body_model(projectile, atmosphere, wind_m_s, density_altitude) -> Rigi
     if wind.shape != (3,):
         raise ValueError(f"wind_m_s must be 3 flat-frame components; got shape {wind.shape}")
     check_choice(density_altitude, "density_altitude", DENSITY_ALTITUDES)
-    return _model(check_rigid_body(projectile, "the 6DOF"), _atmosphere_model(atmosphere),
-                  tuple(map(float, wind)), density_altitude)
+    return _model(
+        check_rigid_body(projectile, "the 6DOF"),
+        _atmosphere_model(atmosphere),
+        tuple(map(float, wind)),
+        density_altitude,
+    )
 
 
 def _checked_state(state) -> np.ndarray:
@@ -271,9 +327,14 @@ def _checked_state(state) -> np.ndarray:
     return state
 
 
-def appendix_b_derivatives(state, projectile: Projectile, *, atmosphere="two_segment",
-                           wind_m_s=(0.0, 0.0, 0.0), density_altitude: str = "flat"
-                           ) -> np.ndarray:
+def appendix_b_derivatives(
+    state,
+    projectile: Projectile,
+    *,
+    atmosphere="two_segment",
+    wind_m_s=(0.0, 0.0, 0.0),
+    density_altitude: str = "flat",
+) -> np.ndarray:
     """Time derivative of Appendix B's 12 states: a port of ``PROJ6DOF_M829_DERV`` (App. B).
 
     ``state`` is ``[x y z phi theta psi u v w p q r]`` (flat frame, z down; 3-2-1 Euler angles;
@@ -297,9 +358,14 @@ def appendix_b_derivatives(state, projectile: Projectile, *, atmosphere="two_seg
     return model.body(_checked_state(state))
 
 
-def no_roll_derivatives(state, projectile: Projectile, *, atmosphere="two_segment",
-                        wind_m_s=(0.0, 0.0, 0.0), density_altitude: str = "flat"
-                        ) -> np.ndarray:
+def no_roll_derivatives(
+    state,
+    projectile: Projectile,
+    *,
+    atmosphere="two_segment",
+    wind_m_s=(0.0, 0.0, 0.0),
+    density_altitude: str = "flat",
+) -> np.ndarray:
     """The equations of :func:`appendix_b_derivatives`, exactly, in the no-roll frame
     (Appendix B; derivation in the module docstring).
 
@@ -311,8 +377,9 @@ def no_roll_derivatives(state, projectile: Projectile, *, atmosphere="two_segmen
     return np.array(model.no_roll(0.0, _checked_state(state)))
 
 
-def integrate_fixed_step(derivatives, state0, h_s: float, t_end_s: float
-                         ) -> tuple[np.ndarray, np.ndarray]:
+def integrate_fixed_step(
+    derivatives, state0, h_s: float, t_end_s: float
+) -> tuple[np.ndarray, np.ndarray]:
     """Appendix B's classical RK4 with a fixed step ``h_s`` from t = 0 to ``t_end_s``.
 
     ``derivatives(t, state)`` returns the state's time derivative. Returns the times (n + 1,)
@@ -322,8 +389,7 @@ def integrate_fixed_step(derivatives, state0, h_s: float, t_end_s: float
     y = finite_array(state0, "state0").copy()
     if y.ndim != 1:
         raise ValueError(f"state0 must be one state vector; got shape {y.shape}")
-    h = float(check_range(finite_scalar(h_s, "h_s"), "h_s", low=0.0, low_inclusive=False,
-                          unit="s"))
+    h = float(check_range(finite_scalar(h_s, "h_s"), "h_s", low=0.0, low_inclusive=False, unit="s"))
     t_end = float(check_range(finite_scalar(t_end_s, "t_end_s"), "t_end_s", low=h, unit="s"))
     n = round(t_end / h)
     if abs(n * h - t_end) > 1e-9 * t_end:
@@ -345,9 +411,9 @@ def _flat_velocity(states: np.ndarray) -> np.ndarray:
     """Flat-frame velocity (n, 3) of no-roll states (12, n)."""
     theta, psi, u, v, w = states[4], states[5], states[6], states[7], states[8]
     ct, st, cp, sp = np.cos(theta), np.sin(theta), np.cos(psi), np.sin(psi)
-    return np.column_stack([ct * cp * u - sp * v + st * cp * w,
-                            ct * sp * u + cp * v + st * sp * w,
-                            -st * u + ct * w])
+    return np.column_stack(
+        [ct * cp * u - sp * v + st * cp * w, ct * sp * u + cp * v + st * sp * w, -st * u + ct * w]
+    )
 
 
 def _earth_centred(states: np.ndarray) -> np.ndarray:
@@ -355,8 +421,7 @@ def _earth_centred(states: np.ndarray) -> np.ndarray:
     return np.column_stack([states[0], states[1], states[2] - _R])
 
 
-def trajectory_table(model: RigidBodyModel, times: np.ndarray, states: np.ndarray
-                     ) -> pd.DataFrame:
+def trajectory_table(model: RigidBodyModel, times: np.ndarray, states: np.ndarray) -> pd.DataFrame:
     """The tidy trajectory table of :mod:`.trajectory` plus :data:`EXTRA_COLUMNS` for no-roll
     states (12, n); Mach, drag and angle of attack evaluated with ``model``'s aerodynamics."""
     position = _earth_centred(states)
@@ -367,29 +432,60 @@ def trajectory_table(model: RigidBodyModel, times: np.ndarray, states: np.ndarra
     for k, s in enumerate(states.T):
         x, y, z, _, theta, psi, u, v, w, p, q, r = s
         force, _, air, mach[k], axial[k] = model.aero_no_roll(
-            x, y, z, math.cos(theta), math.sin(theta), math.cos(psi), math.sin(psi),
-            u, v, w, p, q, r)
+            x,
+            y,
+            z,
+            math.cos(theta),
+            math.sin(theta),
+            math.cos(psi),
+            math.sin(psi),
+            u,
+            v,
+            w,
+            p,
+            q,
+            r,
+        )
         air_speed = math.sqrt(air[0] ** 2 + air[1] ** 2 + air[2] ** 2)
         drag[k] = -(force[0] * air[0] + force[1] * air[1] + force[2] * air[2]) / air_speed
         alpha[k] = math.atan2(math.hypot(air[1], air[2]), air[0])
     columns = dict(
-        time_s=times, x_m=states[0], y_m=states[1], z_m=states[2],
-        altitude_m=radius - _R, ground_range_m=ground, cross_range_m=cross,
-        speed_m_s=np.linalg.norm(velocity, axis=1), mach=mach, drag_coefficient=axial,
-        drag_to_gravity=drag / (model.mass * _GM / radius ** 2),
+        time_s=times,
+        x_m=states[0],
+        y_m=states[1],
+        z_m=states[2],
+        altitude_m=radius - _R,
+        ground_range_m=ground,
+        cross_range_m=cross,
+        speed_m_s=np.linalg.norm(velocity, axis=1),
+        mach=mach,
+        drag_coefficient=axial,
+        drag_to_gravity=drag / (model.mass * _GM / radius**2),
         specific_angular_momentum_m2_s=np.linalg.norm(np.cross(position, velocity), axis=1),
         flight_path_angle_rad=flight_path_angle(position, velocity),
-        altitude_flat_m=-states[2], angle_of_attack_rad=alpha, roll_rate_rad_s=states[9],
-        roll_rad=states[3], pitch_rad=states[4], yaw_rad=states[5],
+        altitude_flat_m=-states[2],
+        angle_of_attack_rad=alpha,
+        roll_rate_rad_s=states[9],
+        roll_rad=states[3],
+        pitch_rad=states[4],
+        yaw_rad=states[5],
     )
     return pd.DataFrame({name: columns[name] for name in BASE_COLUMNS + EXTRA_COLUMNS})
 
 
-def simulate_6dof(projectile: Projectile, *, elevation_deg: float = 50.0,
-                  speed_m_s: float = 2022.0, spin_rad_s: float = 10.0,
-                  crosswind_m_s: float = 5.0, atmosphere="two_segment",
-                  density_altitude: str = "flat", rtol: float = 1e-9,
-                  max_time_s: float = 400.0, output_step_s: float = 0.5) -> pd.DataFrame:
+def simulate_6dof(
+    projectile: Projectile,
+    *,
+    elevation_deg: float = 50.0,
+    speed_m_s: float = 2022.0,
+    spin_rad_s: float = 10.0,
+    crosswind_m_s: float = 5.0,
+    atmosphere="two_segment",
+    density_altitude: str = "flat",
+    rtol: float = 1e-9,
+    max_time_s: float = 400.0,
+    output_step_s: float = 0.5,
+) -> pd.DataFrame:
     """One 6DOF flight of Appendix B from launch to impact, as the tidy trajectory table.
 
     Launch from the flat frame's origin with psi = phi = 0, theta = ``elevation_deg``, body
@@ -410,27 +506,46 @@ def simulate_6dof(projectile: Projectile, *, elevation_deg: float = 50.0,
     ``n_rhs`` and ``n_steps``.
     """
     projectile = check_rigid_body(projectile, "the 6DOF")
-    elevation = check_range(finite_scalar(elevation_deg, "elevation_deg"), "elevation_deg",
-                            low=0.0, low_inclusive=False, high=90.0, unit="deg")
+    elevation = check_range(
+        finite_scalar(elevation_deg, "elevation_deg"),
+        "elevation_deg",
+        low=0.0,
+        low_inclusive=False,
+        high=90.0,
+        unit="deg",
+    )
     if math.cos(math.radians(elevation)) <= _SINGULAR_COS:
-        raise ValueError(f"elevation_deg = {elevation:g} deg starts at the singularity of "
-                         "Appendix B's Euler angles (theta = 90 deg); launch a little lower")
-    speed = check_range(finite_scalar(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0,
-                        low_inclusive=False, unit="m/s")
+        raise ValueError(
+            f"elevation_deg = {elevation:g} deg starts at the singularity of "
+            "Appendix B's Euler angles (theta = 90 deg); launch a little lower"
+        )
+    speed = check_range(
+        finite_scalar(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0, low_inclusive=False, unit="m/s"
+    )
     spin = finite_scalar(spin_rad_s, "spin_rad_s")
     crosswind = finite_scalar(crosswind_m_s, "crosswind_m_s")
     rtol = check_range(finite_scalar(rtol, "rtol"), "rtol", low=1e-13, high=1e-3)
-    max_time = check_range(finite_scalar(max_time_s, "max_time_s"), "max_time_s", low=0.0,
-                           low_inclusive=False, unit="s")
-    step = check_range(finite_scalar(output_step_s, "output_step_s"), "output_step_s",
-                       low=0.0, low_inclusive=False, unit="s")
+    max_time = check_range(
+        finite_scalar(max_time_s, "max_time_s"),
+        "max_time_s",
+        low=0.0,
+        low_inclusive=False,
+        unit="s",
+    )
+    step = check_range(
+        finite_scalar(output_step_s, "output_step_s"),
+        "output_step_s",
+        low=0.0,
+        low_inclusive=False,
+        unit="s",
+    )
     model = rigid_body_model(projectile, atmosphere, (0.0, crosswind, 0.0), density_altitude)
 
     def impact(t, y):
         return math.sqrt(y[0] ** 2 + y[1] ** 2 + (_R - y[2]) ** 2) - _R
 
     def apogee(t, y):  # radial velocity, up to the factor 1/|r|
-        (vx, vy, vz), = _flat_velocity(y[:, None])
+        ((vx, vy, vz),) = _flat_velocity(y[:, None])
         return y[0] * vx + y[1] * vy + (y[2] - _R) * vz
 
     def singular_pitch(t, y):
@@ -441,21 +556,33 @@ def simulate_6dof(projectile: Projectile, *, elevation_deg: float = 50.0,
     impact.terminal, impact.direction = True, -1
     apogee.direction = -1
     singular_pitch.terminal, singular_pitch.direction = True, -1
-    y0 = np.array([0.0, 0.0, 0.0, 0.0, math.radians(elevation), 0.0, speed, 0.0, 0.0, spin,
-                   0.0, 0.0])
+    y0 = np.array(
+        [0.0, 0.0, 0.0, 0.0, math.radians(elevation), 0.0, speed, 0.0, 0.0, spin, 0.0, 0.0]
+    )
     try:
-        solution = solve_ivp(model.no_roll, (0.0, max_time), y0, method="DOP853", rtol=rtol,
-                             atol=_ATOL, dense_output=True,
-                             events=(impact, apogee, singular_pitch))
+        solution = solve_ivp(
+            model.no_roll,
+            (0.0, max_time),
+            y0,
+            method="DOP853",
+            rtol=rtol,
+            atol=_ATOL,
+            dense_output=True,
+            events=(impact, apogee, singular_pitch),
+        )
     except (ArithmeticError, ValueError) as exc:
         raise RuntimeError(f"6DOF integration of {projectile.name} failed: {exc}") from exc
     if solution.status < 0:
-        raise RuntimeError(f"6DOF integration of {projectile.name} failed at "
-                           f"t = {solution.t[-1]:.3f} s: {solution.message}")
+        raise RuntimeError(
+            f"6DOF integration of {projectile.name} failed at "
+            f"t = {solution.t[-1]:.3f} s: {solution.message}"
+        )
     if solution.t_events[2].size:
-        raise RuntimeError(f"6DOF flight of {projectile.name} stopped at t = "
-                           f"{solution.t[-1]:.3f} s: the pitch reached +-90 deg, the singularity "
-                           "of Appendix B's Euler angles")
+        raise RuntimeError(
+            f"6DOF flight of {projectile.name} stopped at t = "
+            f"{solution.t[-1]:.3f} s: the pitch reached +-90 deg, the singularity "
+            "of Appendix B's Euler angles"
+        )
 
     end = float(solution.t[-1])
     times = np.append(np.arange(0.0, end, step), end)
@@ -464,17 +591,31 @@ def simulate_6dof(projectile: Projectile, *, elevation_deg: float = 50.0,
     if apogee_times.size:
         top = trajectory_table(model, apogee_times[:1], solution.y_events[1][:1].T).iloc[0]
         apogee_time, apogee_altitude, apogee_range = (
-            float(apogee_times[0]), float(top.altitude_m), float(top.ground_range_m))
+            float(apogee_times[0]),
+            float(top.altitude_m),
+            float(top.ground_range_m),
+        )
     else:
         apogee_time = apogee_altitude = apogee_range = math.nan
     last = frame.iloc[-1]
     frame.attrs.update(
-        projectile=projectile.name, elevation_deg=elevation, speed_m_s=speed,
-        spin_rad_s=spin, crosswind_m_s=crosswind, atmosphere=_atmosphere_model(atmosphere).name,
-        density_altitude=density_altitude, rtol=rtol, impact=solution.status == 1,
-        time_of_flight_s=end, range_m=float(last.ground_range_m),
-        cross_range_m=float(last.cross_range_m), impact_speed_m_s=float(last.speed_m_s),
-        apogee_time_s=apogee_time, apogee_altitude_m=apogee_altitude,
-        apogee_ground_range_m=apogee_range, n_rhs=int(solution.nfev),
-        n_steps=int(solution.t.size - 1))
+        projectile=projectile.name,
+        elevation_deg=elevation,
+        speed_m_s=speed,
+        spin_rad_s=spin,
+        crosswind_m_s=crosswind,
+        atmosphere=_atmosphere_model(atmosphere).name,
+        density_altitude=density_altitude,
+        rtol=rtol,
+        impact=solution.status == 1,
+        time_of_flight_s=end,
+        range_m=float(last.ground_range_m),
+        cross_range_m=float(last.cross_range_m),
+        impact_speed_m_s=float(last.speed_m_s),
+        apogee_time_s=apogee_time,
+        apogee_altitude_m=apogee_altitude,
+        apogee_ground_range_m=apogee_range,
+        n_rhs=int(solution.nfev),
+        n_steps=int(solution.t.size - 1),
+    )
     return frame

@@ -68,9 +68,20 @@ from .drag import BASELINE_CONE as BASELINE_CONE_LAW
 from .drag import ExponentialDragLaw
 from .validation import check_choice, check_range, finite_array, finite_scalar
 
-__all__ = ["ConeFlow", "cone_flow", "cone_drag_coefficient", "NORMALISATIONS", "DragFit",
-           "fit_eq_4_8", "BASELINE_HALF_ANGLE_RAD", "BASE_PRESSURE_RATIO",
-           "TRAJECTORY_MACH_RANGE", "EQ_4_8_MACH_GRID", "baseline_fit", "physical_over_eq_4_8"]
+__all__ = [
+    "ConeFlow",
+    "cone_flow",
+    "cone_drag_coefficient",
+    "NORMALISATIONS",
+    "DragFit",
+    "fit_eq_4_8",
+    "BASELINE_HALF_ANGLE_RAD",
+    "BASE_PRESSURE_RATIO",
+    "TRAJECTORY_MACH_RANGE",
+    "EQ_4_8_MACH_GRID",
+    "baseline_fit",
+    "physical_over_eq_4_8",
+]
 
 BASELINE_HALF_ANGLE_RAD = math.radians(4.0)  # Chapter 4 B
 BASE_PRESSURE_RATIO = 0.75  # Chapter 4 B: base pressure 75 % of free stream
@@ -128,8 +139,15 @@ def _cone_angle(shock_rad, mach, gamma, theta_stop):
     density_ratio = (gamma + 1.0) * mach_n**2 / ((gamma - 1.0) * mach_n**2 + 2.0)
     speed = (1.0 + 2.0 / ((gamma - 1.0) * mach**2)) ** -0.5  # V_inf / V_max
     start = [speed * math.cos(shock_rad), -speed * math.sin(shock_rad) / density_ratio]
-    sol = solve_ivp(_taylor_maccoll, (shock_rad, theta_stop), start, args=(gamma,),
-                    events=_normal_velocity_zero, rtol=_ODE_RTOL, atol=_ODE_ATOL)
+    sol = solve_ivp(
+        _taylor_maccoll,
+        (shock_rad, theta_stop),
+        start,
+        args=(gamma,),
+        events=_normal_velocity_zero,
+        rtol=_ODE_RTOL,
+        atol=_ODE_ATOL,
+    )
     if sol.t_events[0].size:
         return float(sol.t_events[0][0]), float(sol.y_events[0][0][0])
     return theta_stop, float("nan")
@@ -150,18 +168,28 @@ def _weak_shock_angle(mach, half_angle, gamma):
     for k in range(1, steps.size):
         values.append(excess(steps[k]))
         if values[-1] >= 0.0:
-            return _checked(brentq(excess, steps[k - 1], steps[k], xtol=1e-13, rtol=1e-13),
-                            mach, half_angle, mach_angle)
+            return _checked(
+                brentq(excess, steps[k - 1], steps[k], xtol=1e-13, rtol=1e-13),
+                mach,
+                half_angle,
+                mach_angle,
+            )
         if values[-1] < values[-2]:  # passed the largest cone angle: find it
-            peak = minimize_scalar(lambda shock: -excess(shock), method="bounded",
-                                   bounds=(steps[k - 2], steps[k]), options={"xatol": 1e-10})
+            peak = minimize_scalar(
+                lambda shock: -excess(shock),
+                method="bounded",
+                bounds=(steps[k - 2], steps[k]),
+                options={"xatol": 1e-10},
+            )
             if -peak.fun >= 0.0:
                 return brentq(excess, steps[k - 2], peak.x, xtol=1e-13, rtol=1e-13)
             values.append(-peak.fun)
             break
     largest = math.degrees(half_angle + max(values))
-    raise ValueError(f"mach {mach:g} is too low for a {math.degrees(half_angle):g} deg cone: the "
-                     f"shock detaches (largest attached half angle about {largest:.2f} deg)")
+    raise ValueError(
+        f"mach {mach:g} is too low for a {math.degrees(half_angle):g} deg cone: the "
+        f"shock detaches (largest attached half angle about {largest:.2f} deg)"
+    )
 
 
 def _checked(shock_rad, mach, half_angle, mach_angle):
@@ -171,9 +199,11 @@ def _checked(shock_rad, mach, half_angle, mach_angle):
     which the ODE tolerance no longer resolves; slender-body theory applies instead.
     """
     if shock_rad - mach_angle < _MIN_SHOCK_STRENGTH_RAD:
-        raise ValueError(f"half_angle_rad {half_angle:g} is too slender for the Taylor-Maccoll "
-                         f"shooting at mach {mach:g} (shock within "
-                         f"{_MIN_SHOCK_STRENGTH_RAD:g} rad of the Mach angle)")
+        raise ValueError(
+            f"half_angle_rad {half_angle:g} is too slender for the Taylor-Maccoll "
+            f"shooting at mach {mach:g} (shock within "
+            f"{_MIN_SHOCK_STRENGTH_RAD:g} rad of the Mach angle)"
+        )
     return shock_rad
 
 
@@ -183,10 +213,12 @@ def _cone_flow_point(mach, half_angle, gamma):
     g1 = gamma - 1.0
     surface_mach = math.sqrt(2.0 / g1 * v_c**2 / (1.0 - v_c**2))
     mn2 = (mach * math.sin(shock)) ** 2
-    total_pressure_ratio = (((gamma + 1.0) * mn2 / (g1 * mn2 + 2.0)) ** (gamma / g1)
-                            * ((gamma + 1.0) / (2.0 * gamma * mn2 - g1)) ** (1.0 / g1))
-    pressure_ratio = total_pressure_ratio * ((1.0 + 0.5 * g1 * mach**2)
-                                             / (1.0 + 0.5 * g1 * surface_mach**2)) ** (gamma / g1)
+    total_pressure_ratio = ((gamma + 1.0) * mn2 / (g1 * mn2 + 2.0)) ** (gamma / g1) * (
+        (gamma + 1.0) / (2.0 * gamma * mn2 - g1)
+    ) ** (1.0 / g1)
+    pressure_ratio = total_pressure_ratio * (
+        (1.0 + 0.5 * g1 * mach**2) / (1.0 + 0.5 * g1 * surface_mach**2)
+    ) ** (gamma / g1)
     return shock, surface_mach, pressure_ratio
 
 
@@ -206,22 +238,33 @@ def cone_flow(mach, half_angle_rad, gamma=1.4) -> ConeFlow:
     Anderson, Modern Compressible Flow, 3rd ed., Sec 10.4 (pp 366-372).
     """
     mach = check_range(finite_array(mach, "mach"), "mach", low=1.0, low_inclusive=False)
-    half_angle = check_range(finite_array(half_angle_rad, "half_angle_rad"), "half_angle_rad",
-                             low=0.0, high=0.5 * math.pi, low_inclusive=False,
-                             high_inclusive=False, unit="rad")
+    half_angle = check_range(
+        finite_array(half_angle_rad, "half_angle_rad"),
+        "half_angle_rad",
+        low=0.0,
+        high=0.5 * math.pi,
+        low_inclusive=False,
+        high_inclusive=False,
+        unit="rad",
+    )
     gamma = _gamma(gamma)
     mach, half_angle = np.broadcast_arrays(mach, half_angle)
-    points = [_cone_flow_point(float(m), float(t), gamma)
-              for m, t in zip(mach.flat, half_angle.flat)]
+    points = [
+        _cone_flow_point(float(m), float(t), gamma) for m, t in zip(mach.flat, half_angle.flat)
+    ]
     columns = [np.reshape(column, mach.shape) for column in zip(*points)]
     if mach.ndim == 0:
         return ConeFlow(float(mach), float(half_angle), *map(float, columns), gamma)
     return ConeFlow(mach.copy(), half_angle.copy(), *columns, gamma)
 
 
-def cone_drag_coefficient(mach, half_angle_rad=BASELINE_HALF_ANGLE_RAD,
-                          base_pressure_ratio=BASE_PRESSURE_RATIO, gamma=1.4,
-                          normalisation="free_stream"):
+def cone_drag_coefficient(
+    mach,
+    half_angle_rad=BASELINE_HALF_ANGLE_RAD,
+    base_pressure_ratio=BASE_PRESSURE_RATIO,
+    gamma=1.4,
+    normalisation="free_stream",
+):
     """Pressure drag coefficient of a right cone on its base area (Ch. 4 B, Appendix C).
 
     Cd = (p_c - base_pressure_ratio p_inf) / q_ref, no skin friction. ``normalisation`` picks
@@ -263,8 +306,9 @@ def fit_eq_4_8(mach_grid, cd) -> DragFit:
         raise ValueError(f"cd must have one value per Mach number; got shape {cd.shape}")
     c0 = cd.min() - 0.1 * np.ptp(cd)  # a data-driven start: decay rate 0.5 per unit Mach
     p0 = ((cd[0] - c0) * np.exp(0.5 * mach[0]), -0.5, c0)
-    (a, b, c), _ = curve_fit(lambda m, a, b, c: a * np.exp(b * m) + c, mach, cd, p0=p0,
-                             maxfev=20000)
+    (a, b, c), _ = curve_fit(
+        lambda m, a, b, c: a * np.exp(b * m) + c, mach, cd, p0=p0, maxfev=20000
+    )
     residual = cd - (a * np.exp(b * mach) + c)
     r_squared = 1.0 - np.sum(residual**2) / np.sum((cd - cd.mean()) ** 2)
     return DragFit(float(a), float(b), float(c), float(r_squared))

@@ -8,7 +8,8 @@ atmosphere and the drag law are pluggable by name (:mod:`.atmosphere`, :mod:`.dr
 Not Appendix A's integrator: its fixed-step, second-order position recurrence is replaced by
 the adaptive 8th-order scheme of :mod:`.integrator` with events for apogee and impact, so
 results converge (to millimetres at the default ``rtol=1e-9``; see the benchmark). The state
-is integrated in the Earth-centred inertial frame (x toward longitude 0 on the equator at launch, z north); with
+is integrated in the Earth-centred inertial frame (x toward longitude 0 on the equator at
+launch, z north); with
 rotation off this frame is also Earth-fixed. Winds are fixed to the Earth, given as a head wind
 (blowing against the line of fire) and a cross wind (blowing toward the right of it) at launch.
 """
@@ -88,41 +89,80 @@ def _positive(value, name, unit=""):
     return check_range(finite_array(value, name), name, low=0.0, low_inclusive=False, unit=unit)
 
 
-def _run(projectile: Projectile, elevation_deg, speed_m_s, latitude_deg, longitude_deg,
-         bearing_deg, atmosphere, drag_law, rotation_rate_rad_s, head_wind_m_s, cross_wind_m_s,
-         rtol, max_time_s):
+def _run(
+    projectile: Projectile,
+    elevation_deg,
+    speed_m_s,
+    latitude_deg,
+    longitude_deg,
+    bearing_deg,
+    atmosphere,
+    drag_law,
+    rotation_rate_rad_s,
+    head_wind_m_s,
+    cross_wind_m_s,
+    rtol,
+    max_time_s,
+):
     if not isinstance(projectile, Projectile):
         raise TypeError(f"projectile must be a Projectile; got {type(projectile).__name__}")
-    elevation = check_range(finite_array(elevation_deg, "elevation_deg"), "elevation_deg",
-                            low=0.0, low_inclusive=False, high=90.0, unit="deg")
-    speed = _positive(projectile.launch_speed_m_s if speed_m_s is None else speed_m_s,
-                      "speed_m_s", "m/s")
-    latitude = check_range(finite_array(latitude_deg, "latitude_deg"), "latitude_deg",
-                           low=-90.0, high=90.0, unit="deg")
+    elevation = check_range(
+        finite_array(elevation_deg, "elevation_deg"),
+        "elevation_deg",
+        low=0.0,
+        low_inclusive=False,
+        high=90.0,
+        unit="deg",
+    )
+    speed = _positive(
+        projectile.launch_speed_m_s if speed_m_s is None else speed_m_s, "speed_m_s", "m/s"
+    )
+    latitude = check_range(
+        finite_array(latitude_deg, "latitude_deg"), "latitude_deg", low=-90.0, high=90.0, unit="deg"
+    )
     longitude = finite_array(longitude_deg, "longitude_deg")
-    bearing = check_range(finite_array(bearing_deg, "bearing_deg"), "bearing_deg", low=0.0,
-                          high=360.0, high_inclusive=False, unit="deg")
-    head, cross = finite_array(head_wind_m_s, "head_wind_m_s"), finite_array(cross_wind_m_s,
-                                                                            "cross_wind_m_s")
+    bearing = check_range(
+        finite_array(bearing_deg, "bearing_deg"),
+        "bearing_deg",
+        low=0.0,
+        high=360.0,
+        high_inclusive=False,
+        unit="deg",
+    )
+    head, cross = (
+        finite_array(head_wind_m_s, "head_wind_m_s"),
+        finite_array(cross_wind_m_s, "cross_wind_m_s"),
+    )
     omega = finite_scalar(rotation_rate_rad_s, "rotation_rate_rad_s")
-    rtol = float(check_range(finite_scalar(rtol, "rtol"), "rtol", low=0.0, low_inclusive=False,
-                             high=1e-3))
+    rtol = float(
+        check_range(finite_scalar(rtol, "rtol"), "rtol", low=0.0, low_inclusive=False, high=1e-3)
+    )
     max_time_s = float(_positive(finite_scalar(max_time_s, "max_time_s"), "max_time_s", "s"))
     model = atmosphere if isinstance(atmosphere, AtmosphereModel) else get_atmosphere(atmosphere)
-    law = projectile.drag_law if drag_law is None else (
-        get_drag_law(drag_law) if isinstance(drag_law, str) else drag_law)
+    law = (
+        projectile.drag_law
+        if drag_law is None
+        else (get_drag_law(drag_law) if isinstance(drag_law, str) else drag_law)
+    )
 
     elevation, speed, latitude, longitude, bearing, head, cross = (
-        np.atleast_1d(x).astype(float) for x in np.broadcast_arrays(
-            elevation, speed, latitude, longitude, bearing, head, cross))
+        np.atleast_1d(x).astype(float)
+        for x in np.broadcast_arrays(elevation, speed, latitude, longitude, bearing, head, cross)
+    )
     el, lat, lon, brg = (np.radians(x) for x in (elevation, latitude, longitude, bearing))
     up, downrange, _ = launch_frame(lat, lon, brg)
     position = earth.RADIUS_M * up
     ground_velocity = speed * (np.cos(el) * downrange + np.sin(el) * up)
     surface_velocity = omega * np.array([-position[1], position[0], np.zeros_like(lat)])
     right = np.cross(downrange, up, axis=0)
-    dynamics = _Dynamics(model, law, projectile.reference_area_m2 / (2 * projectile.mass_kg),
-                         projectile.mass_kg, omega, -head * downrange + cross * right)
+    dynamics = _Dynamics(
+        model,
+        law,
+        projectile.reference_area_m2 / (2 * projectile.mass_kg),
+        projectile.mass_kg,
+        omega,
+        -head * downrange + cross * right,
+    )
     y0 = np.concatenate([position, ground_velocity + surface_velocity])
 
     def radial_velocity(t, y):
@@ -131,20 +171,40 @@ def _run(projectile: Projectile, elevation_deg, speed_m_s, latitude_deg, longitu
     def altitude(t, y):
         return np.sqrt(np.sum(y[:3] ** 2, axis=0)) - earth.RADIUS_M
 
-    events = (Event("apogee", radial_velocity),
-              Event("impact", altitude, terminal=True, after_s=1e-6))
-    breakpoints = tuple(Breakpoint(lambda t, y, b=b: altitude(t, y) - b)
-                        for b in model.breakpoints_m)
+    events = (
+        Event("apogee", radial_velocity),
+        Event("impact", altitude, terminal=True, after_s=1e-6),
+    )
+    breakpoints = tuple(
+        Breakpoint(lambda t, y, b=b: altitude(t, y) - b) for b in model.breakpoints_m
+    )
     scale = np.array([earth.RADIUS_M] * 3 + [1e3] * 3)
-    solution = integrate_batch(dynamics.acceleration, y0, t_max_s=max_time_s, rtol=rtol,
-                               state_scale=scale, events=events, breakpoints=breakpoints)
+    solution = integrate_batch(
+        dynamics.acceleration,
+        y0,
+        t_max_s=max_time_s,
+        rtol=rtol,
+        state_scale=scale,
+        events=events,
+        breakpoints=breakpoints,
+    )
     missed = np.isnan(solution.event_times["impact"])
     if missed.any():
-        warnings.warn(f"{missed.sum()} of {missed.size} launches did not return to the ground "
-                      f"within max_time_s = {max_time_s:g} s", ModelValidityWarning, stacklevel=3)
-    launch = dict(elevation_deg=elevation, speed_m_s=speed, latitude_deg=latitude,
-                  longitude_deg=longitude, bearing_deg=bearing, head_wind_m_s=head,
-                  cross_wind_m_s=cross)
+        warnings.warn(
+            f"{missed.sum()} of {missed.size} launches did not return to the ground "
+            f"within max_time_s = {max_time_s:g} s",
+            ModelValidityWarning,
+            stacklevel=3,
+        )
+    launch = dict(
+        elevation_deg=elevation,
+        speed_m_s=speed,
+        latitude_deg=latitude,
+        longitude_deg=longitude,
+        bearing_deg=bearing,
+        head_wind_m_s=head,
+        cross_wind_m_s=cross,
+    )
     return solution, dynamics, up, downrange, launch
 
 
@@ -157,9 +217,16 @@ def _table(solution, dynamics, up, downrange, index, times_s) -> pd.DataFrame:
     ground, cross = surface_ranges(earth_fixed, up[:, index], downrange[:, index])
     drag = dynamics.drag_factor_m2_kg * density * cd * air_speed**2
     columns = dict(
-        time_s=times_s, x_m=y[0], y_m=y[1], z_m=y[2], altitude_m=altitude,
-        ground_range_m=ground, cross_range_m=cross,
-        speed_m_s=np.sqrt(np.sum(y[3:] ** 2, axis=0)), mach=mach, drag_coefficient=cd,
+        time_s=times_s,
+        x_m=y[0],
+        y_m=y[1],
+        z_m=y[2],
+        altitude_m=altitude,
+        ground_range_m=ground,
+        cross_range_m=cross,
+        speed_m_s=np.sqrt(np.sum(y[3:] ** 2, axis=0)),
+        mach=mach,
+        drag_coefficient=cd,
         drag_to_gravity=drag / (earth.GM_M3_S2 / radius**2),
         specific_angular_momentum_m2_s=np.linalg.norm(np.cross(y[:3].T, y[3:].T), axis=1),
         flight_path_angle_rad=flight_path_angle(y[:3].T, y[3:].T),
@@ -175,13 +242,19 @@ def _summary(solution, dynamics, up, downrange, launch) -> pd.DataFrame:
         end_t = impact_t if np.isfinite(impact_t) else solution.times[i][-1]
         times = np.array([apogee_t, end_t]) if np.isfinite(apogee_t) else np.array([end_t, end_t])
         table = _table(solution, dynamics, up, downrange, i, times)
-        rows.append(dict(
-            apogee_time_s=apogee_t,
-            apogee_altitude_m=table.altitude_m[0] if np.isfinite(apogee_t) else np.nan,
-            apogee_ground_range_m=table.ground_range_m[0] if np.isfinite(apogee_t) else np.nan,
-            impact=bool(np.isfinite(impact_t)), time_of_flight_s=end_t,
-            range_m=table.ground_range_m[1], cross_range_m=table.cross_range_m[1],
-            impact_speed_m_s=table.speed_m_s[1], steps=int(solution.steps[i])))
+        rows.append(
+            dict(
+                apogee_time_s=apogee_t,
+                apogee_altitude_m=table.altitude_m[0] if np.isfinite(apogee_t) else np.nan,
+                apogee_ground_range_m=table.ground_range_m[0] if np.isfinite(apogee_t) else np.nan,
+                impact=bool(np.isfinite(impact_t)),
+                time_of_flight_s=end_t,
+                range_m=table.ground_range_m[1],
+                cross_range_m=table.cross_range_m[1],
+                impact_speed_m_s=table.speed_m_s[1],
+                steps=int(solution.steps[i]),
+            )
+        )
     return pd.concat([pd.DataFrame(launch), pd.DataFrame(rows)], axis=1)
 
 
@@ -214,29 +287,59 @@ def simulate_3dof(
     """
     step = finite_scalar(output_step_s, "output_step_s")
     check_range(step, "output_step_s", low=0.0, low_inclusive=False, unit="s")
-    for name, value in (("elevation_deg", elevation_deg), ("speed_m_s", speed_m_s),
-                        ("latitude_deg", latitude_deg), ("bearing_deg", bearing_deg)):
+    for name, value in (
+        ("elevation_deg", elevation_deg),
+        ("speed_m_s", speed_m_s),
+        ("latitude_deg", latitude_deg),
+        ("bearing_deg", bearing_deg),
+    ):
         if value is not None:
             finite_scalar(value, name)
     solution, dynamics, up, downrange, launch = _run(
-        projectile, elevation_deg, speed_m_s, latitude_deg, longitude_deg, bearing_deg,
-        atmosphere, drag_law, rotation_rate_rad_s, head_wind_m_s, cross_wind_m_s, rtol,
-        max_time_s)
+        projectile,
+        elevation_deg,
+        speed_m_s,
+        latitude_deg,
+        longitude_deg,
+        bearing_deg,
+        atmosphere,
+        drag_law,
+        rotation_rate_rad_s,
+        head_wind_m_s,
+        cross_wind_m_s,
+        rtol,
+        max_time_s,
+    )
     summary = _summary(solution, dynamics, up, downrange, launch).iloc[0]
     end = summary.time_of_flight_s
     times = np.append(np.arange(0.0, end, step), end)
     table = _table(solution, dynamics, up, downrange, 0, times)
-    table.attrs.update(summary.to_dict(), projectile=projectile.name,
-                       rhs_evaluations=solution.rhs_evaluations,
-                       rotation_rate_rad_s=rotation_rate_rad_s, rtol=rtol)
+    table.attrs.update(
+        summary.to_dict(),
+        projectile=projectile.name,
+        rhs_evaluations=solution.rhs_evaluations,
+        rotation_rate_rad_s=rotation_rate_rad_s,
+        rtol=rtol,
+    )
     return table
 
 
-def simulate_3dof_batch(projectile: Projectile, elevation_deg, *, speed_m_s=None,
-                        latitude_deg=0.0, longitude_deg=0.0, bearing_deg=90.0,
-                        atmosphere="two_segment", drag_law=None, rotation_rate_rad_s=0.0,
-                        head_wind_m_s=0.0, cross_wind_m_s=0.0, rtol=1e-9,
-                        max_time_s=3000.0) -> pd.DataFrame:
+def simulate_3dof_batch(
+    projectile: Projectile,
+    elevation_deg,
+    *,
+    speed_m_s=None,
+    latitude_deg=0.0,
+    longitude_deg=0.0,
+    bearing_deg=90.0,
+    atmosphere="two_segment",
+    drag_law=None,
+    rotation_rate_rad_s=0.0,
+    head_wind_m_s=0.0,
+    cross_wind_m_s=0.0,
+    rtol=1e-9,
+    max_time_s=3000.0,
+) -> pd.DataFrame:
     """Many 3DOF launches integrated together (arguments broadcast against each other).
 
     Returns one row per launch: its inputs, apogee (time, altitude, ground range), impact
@@ -244,9 +347,20 @@ def simulate_3dof_batch(projectile: Projectile, elevation_deg, *, speed_m_s=None
     integrator as :func:`simulate_3dof`, which is a batch of one.
     """
     solution, dynamics, up, downrange, launch = _run(
-        projectile, elevation_deg, speed_m_s, latitude_deg, longitude_deg, bearing_deg,
-        atmosphere, drag_law, rotation_rate_rad_s, head_wind_m_s, cross_wind_m_s, rtol,
-        max_time_s)
+        projectile,
+        elevation_deg,
+        speed_m_s,
+        latitude_deg,
+        longitude_deg,
+        bearing_deg,
+        atmosphere,
+        drag_law,
+        rotation_rate_rad_s,
+        head_wind_m_s,
+        cross_wind_m_s,
+        rtol,
+        max_time_s,
+    )
     summary = _summary(solution, dynamics, up, downrange, launch)
     summary.attrs.update(projectile=projectile.name, rhs_evaluations=solution.rhs_evaluations)
     return summary

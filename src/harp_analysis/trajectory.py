@@ -27,9 +27,21 @@ from .earth import RADIUS_M
 
 __all__ = ["BASE_COLUMNS", "surface_ranges", "flight_path_angle"]
 
-BASE_COLUMNS = ("time_s", "x_m", "y_m", "z_m", "altitude_m", "ground_range_m", "cross_range_m",
-                "speed_m_s", "mach", "drag_coefficient", "drag_to_gravity",
-                "specific_angular_momentum_m2_s", "flight_path_angle_rad")
+BASE_COLUMNS = (
+    "time_s",
+    "x_m",
+    "y_m",
+    "z_m",
+    "altitude_m",
+    "ground_range_m",
+    "cross_range_m",
+    "speed_m_s",
+    "mach",
+    "drag_coefficient",
+    "drag_to_gravity",
+    "specific_angular_momentum_m2_s",
+    "flight_path_angle_rad",
+)
 
 
 def surface_ranges(position_m, launch_up, launch_downrange):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import TypeVar
 
 import numpy as np
 
@@ -34,8 +35,11 @@ def finite_scalar(value, name: str) -> float:
     return float(array)
 
 
+Checked = TypeVar("Checked", float, np.ndarray)
+
+
 def check_range(
-    array: np.ndarray,
+    array: Checked,
     name: str,
     *,
     low: float | None = None,
@@ -43,8 +47,9 @@ def check_range(
     low_inclusive: bool = True,
     high_inclusive: bool = True,
     unit: str = "",
-) -> np.ndarray:
-    """Raise ``ValueError`` naming ``name`` if any element of ``array`` is outside the interval."""
+) -> Checked:
+    """Raise ``ValueError`` naming ``name`` if any element of ``array`` is outside the interval;
+    return ``array`` itself."""
     too_low = np.zeros(np.shape(array), bool)
     too_high = np.zeros(np.shape(array), bool)
     if low is not None:
@@ -67,8 +72,11 @@ def check_range(
 
 
 def check_choice(value: str, name: str, options: Iterable[str]) -> str:
-    """Return ``value`` if it is one of ``options``; otherwise raise naming ``name`` and the options."""
+    """Return ``value`` if it is one of ``options``; otherwise raise naming ``name`` and the
+    options."""
     options = list(options)
     if value not in options:
-        raise ValueError(f"unknown {name} {value!r}; expected one of {', '.join(map(repr, options))}")
+        raise ValueError(
+            f"unknown {name} {value!r}; expected one of {', '.join(map(repr, options))}"
+        )
     return value

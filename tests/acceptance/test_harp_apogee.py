@@ -29,10 +29,24 @@ DEVIATIONS = {
     ("printed_columns", "barbados", "std"): "ch6.barbados.std.printed_columns",
     ("printed_columns", "yuma", "mean"): "ch6.yuma.mean.printed_columns",
 }
-CASES = [pytest.param(model, site, statistic, marks=(
-    [pytest.mark.xfail(strict=True, reason=f"ledger row {DEVIATIONS[model, site, statistic]}")]
-    if (model, site, statistic) in DEVIATIONS else []))
-    for model in ("dissertation", "consistent", "printed_columns") for site, statistic in TEXT]
+CASES = [
+    pytest.param(
+        model,
+        site,
+        statistic,
+        marks=(
+            [
+                pytest.mark.xfail(
+                    strict=True, reason=f"ledger row {DEVIATIONS[model, site, statistic]}"
+                )
+            ]
+            if (model, site, statistic) in DEVIATIONS
+            else []
+        ),
+    )
+    for model in ("dissertation", "consistent", "printed_columns")
+    for site, statistic in TEXT
+]
 
 
 @pytest.mark.parametrize("model, site, statistic", CASES)
