@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: figures test benchmark clean-venv
+.PHONY: figures test lint benchmark clean-venv
 
 $(STAMP): environment.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -15,11 +15,20 @@ $(STAMP): environment.txt pyproject.toml
 		--no-build-isolation --editable .
 	touch $@
 
+# Figures go to the committed figures/ only here; notebooks run elsewhere write to a scratch
+# folder (harp_analysis.paths.FIGURES_DIR).
 figures: $(STAMP)
-	$(BIN)/python -m harp_analysis.build
+	HARP_ANALYSIS_FIGURES_DIR="$(CURDIR)/figures" $(BIN)/python -m harp_analysis.build
+
+# Style (ruff), types (mypy) and the package's layers (import-linter, contracts in pyproject.toml).
+lint: $(STAMP)
+	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff format --check src tests benchmarks
+	$(BIN)/mypy
+	$(BIN)/lint-imports
 
 # Notebooks under test save their figures to a scratch folder, never over the committed ones.
-test: $(STAMP)
+test: lint
 	HARP_ANALYSIS_FIGURES_DIR="$$(mktemp -d)" $(BIN)/python -m pytest -n 2 tests --nbmake notebooks
 
 benchmark: $(STAMP)

@@ -8,16 +8,17 @@ Run: `make benchmark`.
 
 import numpy as np
 
-from harp_analysis import effort, mks, projectiles, threedof
+from harp_analysis import effort, mks, threedof
+from harp_analysis.launch import baseline_chapter_4
 
 
 def main():
-    baseline = projectiles.BASELINE
+    launch = baseline_chapter_4(45.0)
     n = 1_000_000
     elevations = np.radians(np.linspace(30.0, 85.0, n))
-    solution = mks.for_projectile(baseline, 45.0)
+    solution = mks.for_launch(launch)
     beta, tau = solution.beta.item(), solution.tau.item()
-    cd0 = float(baseline.drag_law(2157.0 / 340.137))
+    cd0 = launch.launch_drag_coefficient
 
     def many():
         return mks.ModifiedKeplerSolution(
@@ -38,7 +39,7 @@ def main():
         return solution.sample(np.linspace(0.0, solution.impact_angle, 500))
 
     mks_full = effort.best_time(full_trajectory, number=20)
-    three = effort.best_time(lambda: threedof.simulate_3dof(baseline, 45.0))
+    three = effort.best_time(lambda: threedof.simulate_3dof(launch))
     print(
         f"one trajectory: MKS (500 points with time of flight) {mks_full * 1e6:.0f} us, "
         f"3DOF {three * 1e3:.1f} ms, ratio {three / mks_full:.0f}"

@@ -8,14 +8,15 @@ setting); the 3DOF is the point mass on its spherical altitude. Every time inclu
 method's trajectory table (a row every 0.5 s). Run: `make benchmark`.
 """
 
-from harp_analysis import effort, mlt, projectiles, sixdof, threedof
+from harp_analysis import effort, mlt, sixdof, threedof
+from harp_analysis.launch import HP_CHAPTER_2
 
 SEGMENTS_M = (2000.0, 1000.0, 500.0, 100.0)
 
 
 def main():
-    hp = projectiles.HP
-    three = effort.best_time(lambda: threedof.simulate_3dof(hp, 50.0, cross_wind_m_s=5.0))
+    hp = HP_CHAPTER_2
+    three = effort.best_time(lambda: threedof.simulate_3dof(hp))
     six = effort.best_time(lambda: sixdof.simulate_6dof(hp, density_altitude="flat"), repeat=2)
     reference = sixdof.simulate_6dof(hp, density_altitude="flat").attrs
     print("HP at 50 deg, 2022 m/s, 5 m/s cross wind, to impact (density altitude flat)")
@@ -38,7 +39,7 @@ def main():
         seconds = effort.best_time(run, repeat=3)
         flight = run().attrs
         print(
-            f"{length:>15.0f} {seconds * 1e3:>10.1f} {flight['n_segments']:>9} "
+            f"{length:>15.0f} {seconds * 1e3:>10.1f} {flight['steps']:>9} "
             f"{seconds / three:>7.2f} {seconds / six:>7.3f} "
             f"{flight['apogee_altitude_m'] - reference['apogee_altitude_m']:>18.1f} "
             f"{flight['range_m'] - reference['range_m']:>17.1f}"

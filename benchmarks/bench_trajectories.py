@@ -9,7 +9,8 @@ import time
 
 import numpy as np
 
-from harp_analysis import projectiles, sixdof, threedof
+from harp_analysis import sixdof, threedof
+from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, baseline_chapter_4
 
 
 def best_of(function, repeat=5):
@@ -22,12 +23,12 @@ def best_of(function, repeat=5):
 
 
 def main():
-    baseline = projectiles.BASELINE
-    reference = threedof.simulate_3dof(baseline, 45.0, rtol=1e-13).attrs
+    baseline = baseline_chapter_4(45.0)
+    reference = threedof.simulate_3dof(baseline, rtol=1e-13).attrs
     print("3DOF, baseline cone at 45 deg, one trajectory (table every 0.5 s)")
     print(f"{'rtol':>8} {'time (ms)':>10} {'steps':>6} {'RHS':>6} {'apogee error (m)':>17}")
     for rtol in (1e-8, 1e-9, 1e-10):
-        seconds, flight = best_of(lambda: threedof.simulate_3dof(baseline, 45.0, rtol=rtol))
+        seconds, flight = best_of(lambda: threedof.simulate_3dof(baseline, rtol=rtol))
         error = abs(flight.attrs["apogee_altitude_m"] - reference["apogee_altitude_m"])
         print(
             f"{rtol:>8.0e} {seconds * 1e3:>10.1f} {flight.attrs['steps']:>6} "
@@ -36,9 +37,12 @@ def main():
 
     elevations = np.linspace(20.0, 85.0, 1000)
     seconds, batch = best_of(
-        lambda: threedof.simulate_3dof_batch(baseline, elevations, rtol=1e-9), repeat=2
+        lambda: threedof.simulate_3dof_batch(
+            [baseline.but(elevation_deg=e) for e in elevations], rtol=1e-9
+        ),
+        repeat=2,
     )
-    single, _ = best_of(lambda: threedof.simulate_3dof_batch(baseline, 45.0, rtol=1e-9))
+    single, _ = best_of(lambda: threedof.simulate_3dof_batch(baseline, rtol=1e-9))
     print(
         f"\n3DOF batch of {elevations.size} launches (20-85 deg, rtol 1e-9): "
         f"{seconds:.2f} s, {seconds / elevations.size * 1e3:.2f} ms per launch, "
@@ -47,11 +51,11 @@ def main():
     )
 
     print("\n6DOF (no-roll frame, DOP853 rtol 1e-9), 50 deg, 2022 m/s, 5 m/s cross wind")
-    for projectile in (projectiles.HP, projectiles.LP):
-        seconds, flight = best_of(lambda: sixdof.simulate_6dof(projectile), repeat=2)
+    for launch in (HP_CHAPTER_2, LP_CHAPTER_2):
+        seconds, flight = best_of(lambda: sixdof.simulate_6dof(launch), repeat=2)
         print(
-            f"{projectile.name}: {seconds:.2f} s, {flight.attrs['n_steps']} steps, "
-            f"{flight.attrs['n_rhs']} RHS evaluations; {seconds / single:.0f}x one 3DOF"
+            f"{launch.projectile.name}: {seconds:.2f} s, {flight.attrs['steps']} steps, "
+            f"{flight.attrs['rhs_evaluations']} RHS evaluations; {seconds / single:.0f}x one 3DOF"
         )
 
 

@@ -1,20 +1,28 @@
 """Appendix A's own scheme: its artefacts are real, and it converges to the accurate 3DOF."""
 
+import warnings
+
 import numpy as np
 import pytest
 
-from harp_analysis import appendix_a, threedof
+from harp_analysis import appendix_a, threedof, trajectory
+from harp_analysis.launch import Launch
 from harp_analysis.projectiles import BASELINE
+from harp_analysis.validation import ModelValidityWarning
+
+#: The listing's launch: the baseline cone (eq 4.8) at 45 deg in the three-layer air it
+#: hard-codes, 2157 m/s due east from the equator, the Earth's spin off.
+LISTING = Launch(BASELINE, 2157.0, 45.0, atmosphere="three_layer")
 
 
 @pytest.fixture(scope="module")
 def accurate():
-    return threedof.simulate_3dof(BASELINE, 45.0, atmosphere="three_layer")
+    return threedof.simulate_3dof(LISTING)
 
 
 def test_clock_leads_position_by_one_step():
     dt = 0.1
-    rows = appendix_a.simulate_appendix_a(BASELINE, 45.0, dt)
+    rows = appendix_a.simulate_appendix_a(LISTING, dt)
     first = rows.iloc[0]
     assert first.time_s == pytest.approx(3 * dt)
     # The first position is two steps out (Euler then one recurrence step), not three.
@@ -24,7 +32,8 @@ def test_clock_leads_position_by_one_step():
 
 def test_launch_offset_against_an_accurate_solution(accurate):
     """Compared at the macro's clock, a 0.1 s step puts the launch rows ~200 m behind."""
-    rows = appendix_a.simulate_appendix_a(BASELINE, 45.0, 0.1, max_time_s=5.0)
+    with pytest.warns(trajectory.TruncatedFlightWarning):
+        rows = appendix_a.simulate_appendix_a(LISTING, 0.1, max_time_s=5.0)
     truth = np.interp(rows.time_s, accurate.time_s, accurate.altitude_m)
     gap = truth - rows.altitude_m
     assert 0.9 * 0.1 * 2157 * np.sin(np.radians(45)) < gap.iloc[0] < 1.1 * 0.1 * 2157
@@ -33,7 +42,7 @@ def test_launch_offset_against_an_accurate_solution(accurate):
 def test_converges_to_the_accurate_3dof_at_first_order(accurate):
     errors = [
         abs(
-            appendix_a.simulate_appendix_a(BASELINE, 45.0, dt).altitude_m.max()
+            appendix_a.simulate_appendix_a(LISTING, dt).altitude_m.max()
             - accurate.attrs["apogee_altitude_m"]
         )
         for dt in (0.2, 0.1)
@@ -42,15 +51,50 @@ def test_converges_to_the_accurate_3dof_at_first_order(accurate):
     assert errors[1] < 0.005 * accurate.attrs["apogee_altitude_m"]
 
 
+def test_shared_metadata_and_a_flight_in_the_launch_plane():
+    rows = appendix_a.simulate_appendix_a(LISTING, 0.2)
+    assert set(trajectory.METADATA_KEYS) <= set(rows.attrs)
+    assert rows.attrs["engine"] == "Appendix A macro" and rows.attrs["launch"] is LISTING
+    assert rows.attrs["impact"] and rows.attrs["stop_reason"] == "impact"
+    assert rows.attrs["apogee_altitude_m"] == rows.altitude_m.max()
+    assert rows.attrs["range_m"] == rows.ground_range_m.iloc[-1]
+    assert np.abs(rows.cross_range_m).max() < 1e-6  # no wind, no spin: no cross range
+
+
+def test_the_launch_chooses_the_air(accurate):
+    """The air is the launch's: in the two-segment air the macro moves toward the 3DOF flown
+    in the two-segment air (by the ~80 m the airs differ), off the three-layer one."""
+    launch = LISTING.but(atmosphere="two_segment")
+    two = appendix_a.simulate_appendix_a(launch, 0.1).attrs["apogee_altitude_m"]
+    three = appendix_a.simulate_appendix_a(LISTING, 0.1).attrs["apogee_altitude_m"]
+    truth = threedof.simulate_3dof(launch).attrs["apogee_altitude_m"]
+    assert abs(truth - accurate.attrs["apogee_altitude_m"]) > 50.0
+    assert (two - three) == pytest.approx(truth - accurate.attrs["apogee_altitude_m"], rel=0.01)
+
+
 @pytest.mark.parametrize(
     "kwargs, name",
     [
         ({"dt_s": 0.0}, "dt_s"),
         ({"dt_s": np.nan}, "dt_s"),
         ({"elevation_deg": 95.0}, "elevation_deg"),
+        ({"site_altitude_m": 1000.0}, "site_altitude_m"),
+        ({"max_time_s": 0.0}, "max_time_s"),
     ],
 )
 def test_bad_input_is_named(kwargs, name):
     arguments = {"elevation_deg": 45.0, "dt_s": 0.1} | kwargs
+    options = {key: arguments.pop(key) for key in ("dt_s", "max_time_s") if key in arguments}
     with pytest.raises(ValueError, match=name):
-        appendix_a.simulate_appendix_a(BASELINE, **arguments)
+        appendix_a.simulate_appendix_a(LISTING.but(**arguments), **options)
+
+
+def test_a_projectile_is_not_a_launch_and_wind_is_ignored_aloud():
+    with pytest.raises(TypeError, match="Launch"):
+        appendix_a.simulate_appendix_a(BASELINE, 0.1)
+    with pytest.warns(ModelValidityWarning, match="cross_wind_m_s"):
+        windy = appendix_a.simulate_appendix_a(LISTING.but(cross_wind_m_s=5.0), 0.2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        calm = appendix_a.simulate_appendix_a(LISTING, 0.2)
+    assert windy.altitude_m.to_numpy() == pytest.approx(calm.altitude_m.to_numpy(), rel=0)

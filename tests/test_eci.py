@@ -8,8 +8,11 @@ import numpy as np
 import pytest
 
 from harp_analysis import earth, eci, mks
+from harp_analysis.atmosphere import get_atmosphere
+from harp_analysis.launch import HP_CHAPTER_2, baseline_chapter_4
 from harp_analysis.projectiles import BASELINE
 from harp_analysis.sites import BARBADOS
+from harp_analysis.validation import ModelValidityWarning
 
 DEG = math.pi / 180
 NO_TANGENT = replace(eci.CONSISTENT, name="no V_tangent", include_tangent=False)
@@ -89,8 +92,10 @@ def test_speed_ratio_eq_5_3_is_exact_with_the_inertial_east_component():
 
 
 def test_eci_solution_without_rotation_is_the_non_rotating_mks():
-    reference = mks.for_projectile(BASELINE, 45.0)
-    cd0 = BASELINE.drag_law(2157.0 / mks.get_atmosphere("two_segment").speed_of_sound(0.0))
+    launch = baseline_chapter_4(45.0, bearing_deg=1.0 / DEG, latitude_deg=0.7 / DEG)
+    reference = mks.for_launch(launch)
+    air = get_atmosphere("two_segment")  # the launch's air at the gun: Cd0's Mach
+    cd0 = BASELINE.drag_law(2157.0 / air.speed_of_sound(0.0))
     solution = eci.eci_solution(
         2157.0,
         45 * DEG,
@@ -98,12 +103,58 @@ def test_eci_solution_without_rotation_is_the_non_rotating_mks():
         0.7,
         drag_area_m2=cd0 * BASELINE.reference_area_m2,
         mass_kg=BASELINE.mass_kg,
-        surface_density_kg_m3=1.225,
+        surface_density_kg_m3=1.225,  # the MKS's air, eq 3.11 (mks.gun_density_kg_m3)
         rotation_rate_rad_s=0.0,
     )
+    # the launch's own ECI MKS: its rotation_rate_rad_s is 0 unless the launch says otherwise
+    by_launch = eci.solution_for_launch(launch)
     for name in ("h_inf", "c1", "c2", "amplitudes", "beta", "tau"):
         assert getattr(solution, name) == pytest.approx(getattr(reference, name), rel=1e-9), name
+        assert getattr(by_launch, name) == pytest.approx(getattr(reference, name), rel=1e-9), name
     assert solution.apogee_altitude() == pytest.approx(reference.apogee_altitude(), rel=1e-9)
+    assert by_launch.apogee_altitude() == pytest.approx(reference.apogee_altitude(), rel=1e-9)
+
+
+@pytest.mark.parametrize("model", ["consistent", "dissertation", "printed_columns"])
+def test_correction_for_launch_is_launch_correction_of_its_fields(model):
+    """Barbados, 1800 m/s at 85 deg on bearing 109 deg, the Earth turning: the Launch's speed,
+    angles, Cd0 A at its Mach, mass, air at the gun and rotation, nothing else."""
+    launch = baseline_chapter_4(
+        85.0,
+        speed_m_s=1800.0,
+        bearing_deg=109.0,
+        latitude_deg=BARBADOS.latitude_rad / DEG,
+        rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+    )
+    by_launch = eci.correction_for_launch(launch, model)
+    air = get_atmosphere("two_segment")
+    explicit = eci.launch_correction(
+        1800.0,
+        85 * DEG,
+        109 * DEG,
+        BARBADOS.latitude_rad,
+        drag_area_m2=BASELINE.drag_law(1800.0 / air.speed_of_sound(0.0))
+        * BASELINE.reference_area_m2,
+        mass_kg=BASELINE.mass_kg,
+        surface_density_kg_m3=1.225,  # the MKS's air, eq 3.11 (mks.gun_density_kg_m3)
+        model=model,
+    )
+    assert by_launch.model is eci.get_model(model)
+    for name in ("velocity_m_s", "misalignment_rad", "beta", "tau", "speed_ratio_squared"):
+        assert getattr(by_launch, name) == pytest.approx(getattr(explicit, name), rel=1e-12), name
+    solution = eci.solution_for_launch(launch, model)
+    assert solution.apogee_altitude() == pytest.approx(
+        eci.solution_for(explicit).apogee_altitude(), rel=1e-12
+    )
+
+
+def test_launch_entry_points_refuse_what_the_eci_mks_cannot_fly():
+    with pytest.raises(TypeError, match="Launch"):
+        eci.correction_for_launch(BASELINE)
+    with pytest.raises(ValueError, match="site_altitude_m"):
+        eci.solution_for_launch(baseline_chapter_4(45.0, site_altitude_m=1000.0))
+    with pytest.warns(ModelValidityWarning, match="cross_wind_m_s"):
+        eci.correction_for_launch(HP_CHAPTER_2)
 
 
 @pytest.mark.parametrize("decay", ["printed", "consistent"])

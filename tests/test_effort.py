@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from harp_analysis import atmosphere, effort, mks, mlt, sixdof
+from harp_analysis.launch import HP_CHAPTER_2, Launch
 from harp_analysis.projectiles import BASELINE, HP
 
 
@@ -27,21 +28,25 @@ def test_dop853_overhead_grows_with_states():
 
 @pytest.mark.parametrize("projectile, elevation", [(BASELINE, 45.0), (BASELINE, 85.0), (HP, 50.0)])
 def test_counted_mks_apogee_is_the_mks(projectile, elevation):
-    solution = mks.for_projectile(projectile, elevation, warn=False)
+    launch = Launch(projectile, projectile.launch_speed_m_s, elevation)
+    solution = mks.for_launch(launch, warn=False)
+    rho0 = 1.225  # eq 3.11's rho0, the MKS's air (mks.gun_density_kg_m3)
     cd0 = (
         solution.beta.item()
         * 2
         * 1.17e-4
         * projectile.mass_kg
         * np.sin(np.radians(elevation))
-        / (1.225 * projectile.reference_area_m2)
+        / (rho0 * projectile.reference_area_m2)
     )
+    assert cd0 == pytest.approx(launch.launch_drag_coefficient, rel=1e-12)
     apogee = effort.mks_apogee(
         projectile.launch_speed_m_s,
         np.radians(elevation),
         cd0,
         projectile.mass_kg,
         projectile.reference_area_m2,
+        rho0=rho0,
     )
     assert apogee == pytest.approx(solution.apogee_altitude("eq_6_4"), rel=1e-9)
 
@@ -113,14 +118,16 @@ def test_sixdof_coefficient_loop_has_nine_items():
     )
 
 
-_FLIGHT = dict(elevation_deg=50.0, crosswind_m_s=5.0, density_altitude="spherical")
+#: Chapter 2 A's HP launch (50 deg, 2022 m/s, 5 m/s cross wind, 10 rad/s) and MLT's options.
+_LAUNCH = HP_CHAPTER_2
+_FLIGHT = dict(density_altitude="spherical")
 
 
 def test_mlt_calls_per_segment():
     """Two coefficient evaluations and three propagations a segment, one more propagation per
     brentq evaluation and one for the apogee state (the radial-velocity checks reuse states)."""
-    calls, table = effort._mlt_run(HP, **_FLIGHT)
-    n = table.attrs["n_segments"]
+    calls, table = effort._mlt_run(_LAUNCH, **_FLIGHT)
+    n = table.attrs["steps"]
     count = {code.co_qualname: k for code, k in calls.items() if code.co_filename == mlt.__file__}
     assert count["segment_coefficients"] == 2 * n
     assert count["_solve_segment"] == count["_Segment.duration_s"] == n
@@ -133,16 +140,12 @@ def test_mlt_calls_per_segment():
 def test_mlt_counts_every_function_with_arithmetic():
     """Each function of the package that MLT's loop runs every segment is costed, runs inside
     a costed one (a generator, a nested function), is a diagnostic, or does no arithmetic."""
-    calls, table = effort._mlt_run(HP, **_FLIGHT)
+    calls, table = effort._mlt_run(_LAUNCH, **_FLIGHT)
     costs = effort._mlt_costs()
     costed = {code.co_qualname for code in costs}
     package = Path(effort.__file__).parent
     for code, k in calls.items():
-        if (
-            code in costs
-            or k < table.attrs["n_segments"]
-            or Path(code.co_filename).parent != package
-        ):
+        if code in costs or k < table.attrs["steps"] or Path(code.co_filename).parent != package:
             continue
         if code.co_qualname.split(".<locals>.")[0] in costed - {code.co_qualname}:
             continue
@@ -157,8 +160,8 @@ def test_mlt_counts_every_function_with_arithmetic():
 
 
 def test_mlt_count_scales_with_the_segments():
-    coarse = effort.mlt_flops(HP, segment_length_m=1000.0, **_FLIGHT)
-    fine = effort.mlt_flops(HP, segment_length_m=500.0, **_FLIGHT)
+    coarse = effort.mlt_flops(_LAUNCH, segment_length_m=1000.0, **_FLIGHT)
+    fine = effort.mlt_flops(_LAUNCH, segment_length_m=500.0, **_FLIGHT)
     assert fine / coarse == pytest.approx(2.0, rel=0.03)
 
 
@@ -166,6 +169,14 @@ def test_effort_table_rows():
     table = effort.effort_table()
     assert list(table.index[:4]) == ["6DOF", "3DOF", "MLT", "MKS (3 terms)"]
     assert table.flops["3DOF"] < table.flops["MLT"] < table.flops["6DOF"]
+    # the counted MKS row flies the same launch as the MKS (its Cd0, rho0 of its air)
+    mks_apogee = mks.for_launch(_LAUNCH, warn=False).apogee_altitude("eq_6_4")
+    assert table.apogee_m["MKS (3 terms)"] == pytest.approx(mks_apogee, rel=1e-9)
     assert effort.orders_of_magnitude("MLT") == pytest.approx(
         np.log10(table.flops["MLT"] / table.flops["MKS (3 terms)"])
     )
+
+
+def test_mlt_is_counted_in_the_two_segment_air_only():
+    with pytest.raises(ValueError, match="two-segment"):
+        effort.mlt_flops(_LAUNCH.but(atmosphere="three_layer"), **_FLIGHT)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-from harp_analysis import earth, eci, harp, harp_rounds
+from harp_analysis import earth, eci, harp, harp_figures, harp_rounds
 from harp_analysis.harp_data import HarpDataError
 from harp_analysis.sites import BARBADOS
 
@@ -118,7 +118,7 @@ def test_missing_round_and_unknown_site_are_named():
 
 def test_no_radar_file_gives_none_and_a_note(radar_dir):
     assert harp_rounds.load_radar_track("barbados", 181) is None
-    fig = harp_rounds.draw_round_figure("barbados", 181)
+    fig = harp_figures.draw_round_figure("barbados", 181)
     notes = [t.get_text() for t in fig.texts]
     assert any("radar data for round 181 are not in the dissertation" in t for t in notes)
 
@@ -130,7 +130,7 @@ def test_radar_track_loads_in_si_and_is_drawn(radar_dir):
     assert track.range_m.tolist() == [600.0, 1200.0]
     assert track.radar.tolist() == ["MPS-19", "M-33"] and track.source_line.tolist() == [3, 4]
     assert "test fixture" in track.attrs["provenance"]
-    fig = harp_rounds.draw_round_figure("barbados", 188)
+    fig = harp_figures.draw_round_figure("barbados", 188)
     assert isinstance(fig, Figure)
     assert not any("not in the dissertation" in t.get_text() for t in fig.texts)
     labels = {line.get_label() for line in fig.axes[1].get_lines()}

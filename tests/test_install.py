@@ -24,11 +24,11 @@ assert len(harp_data.load_barbados()) == 23 and len(harp_data.load_yuma()) == 22
 assert len(harp_data.verify_checksums()) == 3
 assert len(harp.predicted_apogees("yuma")) == 22
 try:
-    paths.FIGURES_DIR
+    paths.REGISTRY_DIR
 except RuntimeError as error:
     assert "checkout" in str(error)
 else:
-    raise AssertionError("FIGURES_DIR resolved without a checkout")
+    raise AssertionError("REGISTRY_DIR resolved without a checkout")
 print(len(names), "submodules")
 """
 

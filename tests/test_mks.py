@@ -8,11 +8,21 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from harp_analysis import earth, kepler, mks
+from harp_analysis import earth, kepler, mks, trajectory
+from harp_analysis.launch import HP_CHAPTER_2, Launch, baseline_chapter_4
 from harp_analysis.projectiles import BASELINE, HP
 from harp_analysis.validation import ModelValidityWarning
 
-ELEVATIONS = np.radians([30.0, 45.0, 65.0, 85.0])
+ELEVATIONS_DEG = (30.0, 45.0, 65.0, 85.0)
+ELEVATIONS = np.radians(ELEVATIONS_DEG)
+#: Chapter 2 A's HP at 50 deg and 2022 m/s without its wind (the MKS has none).
+HP_50 = HP_CHAPTER_2.but(cross_wind_m_s=0.0)
+ESCAPE_SPEED_M_S = math.sqrt(2 * earth.GM_M3_S2 / earth.RADIUS_M)
+
+
+def _baseline(*elevations_deg, speed_m_s=2157.0):
+    """Chapter 4 B's baseline cone at each elevation (a list of launches)."""
+    return [Launch(BASELINE, speed_m_s, elevation) for elevation in elevations_deg]
 
 
 def test_beta_zero_is_the_kepler_conic():
@@ -26,7 +36,7 @@ def test_beta_zero_is_the_kepler_conic():
 
 @pytest.mark.parametrize("n_terms", [1, 2, 3, 5, 8])
 def test_initial_conditions_hold_for_every_series_length(n_terms):
-    solution = mks.for_projectile(BASELINE, np.degrees(ELEVATIONS), n_terms=n_terms)
+    solution = mks.for_launch(_baseline(*ELEVATIONS_DEG), n_terms=n_terms)
     assert solution.radius(0.0)[:, 0] == pytest.approx(earth.RADIUS_M, rel=1e-12)
     assert solution.speed(0.0)[:, 0] == pytest.approx(2157.0, rel=1e-12)
     assert solution.flight_path_angle(0.0)[:, 0] == pytest.approx(ELEVATIONS, rel=1e-12)
@@ -34,7 +44,7 @@ def test_initial_conditions_hold_for_every_series_length(n_terms):
 
 def test_solves_the_linear_modified_kepler_equation():
     """u'' + u equals eq 3.30's right-hand side, truncated to the same number of terms."""
-    solution = mks.for_projectile(BASELINE, 45.0, n_terms=4)
+    solution = mks.for_launch(baseline_chapter_4(45.0), n_terms=4)
     theta = np.linspace(0.0, solution.impact_angle, 200)
     beta, tau, c3 = solution.beta[0, 0], solution.tau[0, 0], solution.c3[0, 0]
     forcing = c3 * sum(
@@ -46,7 +56,7 @@ def test_solves_the_linear_modified_kepler_equation():
 
 def test_agrees_with_direct_numerical_integration():
     """Integrate eq 3.30 numerically from the same launch: the closed form matches."""
-    solution = mks.for_projectile(HP, 50.0, warn=False, n_terms=3)
+    solution = mks.for_launch(HP_50, warn=False, n_terms=3)
     beta, tau, c3 = solution.beta[0, 0], solution.tau[0, 0], solution.c3[0, 0]
 
     def rhs(theta, y):
@@ -64,20 +74,18 @@ def test_agrees_with_direct_numerical_integration():
 
 
 def test_series_converges_as_terms_are_added():
-    apogees = [
-        mks.for_projectile(HP, 50.0, n_terms=n, warn=False).apogee_altitude() for n in range(1, 10)
-    ]
+    apogees = [mks.for_launch(HP_50, n_terms=n, warn=False).apogee_altitude() for n in range(1, 10)]
     steps = np.abs(np.diff(apogees))
     assert np.all(steps[2:] < steps[1:-1])  # monotone once past the first terms
     assert steps[-1] < 1e-3  # metres are settled by nine terms
     # The infinite series sums to exp(-2 beta gamma): compare with a long series.
     assert apogees[-1] == pytest.approx(
-        mks.for_projectile(HP, 50.0, n_terms=20, warn=False).apogee_altitude(), abs=1e-4
+        mks.for_launch(HP_50, n_terms=20, warn=False).apogee_altitude(), abs=1e-4
     )
 
 
 def test_time_quadrature_converges():
-    solution = mks.for_projectile(BASELINE, np.degrees(ELEVATIONS))
+    solution = mks.for_launch(_baseline(*ELEVATIONS_DEG))
     theta = np.linspace(0.0, 1.0, 300)[None, :] * solution.impact_angle[:, None]
     coarse, fine = solution.time(theta, order=3), solution.time(theta, order=24)
     assert np.max(np.abs(coarse - fine)) < 1e-9
@@ -85,13 +93,13 @@ def test_time_quadrature_converges():
 
 def test_apogee_methods_agree():
     """Eq 6.4 drops the driving terms, which have died out by apogee: same answer."""
-    solution = mks.for_projectile(BASELINE, np.degrees(ELEVATIONS))
+    solution = mks.for_launch(_baseline(*ELEVATIONS_DEG))
     assert solution.apogee_altitude("eq_6_4") == pytest.approx(solution.apogee_altitude(), abs=1e-3)
     assert np.abs(solution.du_dtheta(solution.apogee_angle[:, None])).max() < 1e-18
 
 
 def test_speed_and_angular_momentum():
-    solution = mks.for_projectile(BASELINE, 45.0)
+    solution = mks.for_launch(baseline_chapter_4(45.0))
     theta = np.linspace(0, solution.impact_angle, 100)
     h = solution.angular_momentum(theta)
     assert h[0] == pytest.approx(2157.0 * earth.RADIUS_M * np.cos(np.radians(45)))
@@ -104,24 +112,24 @@ def test_speed_and_angular_momentum():
 
 
 def test_vectorised_matches_single():
-    many = mks.for_projectile(BASELINE, [30.0, 65.0])
+    many = mks.for_launch(_baseline(30.0, 65.0))
     for i, elevation in enumerate((30.0, 65.0)):
-        one = mks.for_projectile(BASELINE, elevation)
+        one = mks.for_launch(baseline_chapter_4(elevation))
         assert many.apogee_altitude()[i] == pytest.approx(one.apogee_altitude())
         assert many.impact_angle[i] == pytest.approx(one.impact_angle)
 
 
 def test_validity_warnings():
     with pytest.warns(ModelValidityWarning, match="beta"):
-        mks.for_projectile(HP, 50.0)
+        mks.for_launch(HP_50)
     with pytest.warns(ModelValidityWarning) as caught:  # slow and flat: both limits
-        mks.for_projectile(BASELINE, 10.0, speed_m_s=800.0)
+        mks.for_launch(Launch(BASELINE, 800.0, 10.0))
     assert {"beta", "sensible atmosphere"} <= {
         word for w in caught for word in ("beta", "sensible atmosphere") if word in str(w.message)
     }
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        mks.for_projectile(BASELINE, 45.0)
+        mks.for_launch(baseline_chapter_4(45.0))
 
 
 @pytest.mark.parametrize(
@@ -132,6 +140,7 @@ def test_validity_warnings():
         ({"beta": np.nan}, "beta"),
         ({"tau": -1.0}, "tau"),
         ({"n_terms": 0}, "n_terms"),
+        ({"n_terms": 2.5}, "n_terms"),  # refused, not truncated to 2
     ],
 )
 def test_bad_input_is_named(kwargs, name):
@@ -140,14 +149,163 @@ def test_bad_input_is_named(kwargs, name):
     with pytest.raises(ValueError, match=name):
         mks.ModifiedKeplerSolution(**arguments, n_terms=n_terms)
     with pytest.raises(ValueError, match="elevation_deg"):
-        mks.for_projectile(BASELINE, 90.0)
+        mks.for_launch(baseline_chapter_4(90.0))
 
 
 def test_sample_matches_the_individual_functions():
-    solution = mks.for_projectile(BASELINE, 65.0)
+    solution = mks.for_launch(baseline_chapter_4(65.0))
     theta = np.linspace(0, solution.impact_angle, 50)
     table = solution.sample(theta)
     assert table["altitude_m"] == pytest.approx(solution.altitude(theta))
     assert table["speed_m_s"] == pytest.approx(solution.speed(theta))
     assert table["time_s"] == pytest.approx(solution.time(theta))
     assert table["flight_path_angle_rad"] == pytest.approx(solution.flight_path_angle(theta))
+
+
+@pytest.mark.parametrize("launch", ["HP", HP, 45.0, [], [baseline_chapter_4(45.0), "HP"]])
+def test_for_launch_takes_launches_only(launch):
+    with pytest.raises(TypeError, match="Launch"):
+        mks.for_launch(launch)
+
+
+def test_for_launch_refuses_rotation_and_warns_for_wind():
+    with pytest.raises(ValueError, match="rotation_rate_rad_s"):
+        mks.for_launch(baseline_chapter_4(45.0, rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S))
+    with pytest.warns(ModelValidityWarning, match="cross_wind_m_s"):
+        mks.for_launch(baseline_chapter_4(45.0, cross_wind_m_s=5.0))
+    with pytest.raises(ValueError, match="n_terms"):
+        mks.for_launch(baseline_chapter_4(45.0), n_terms=2.5)
+
+
+def test_for_launch_takes_rho0_and_cd0_of_the_launch():
+    """beta of eq 3.22 from the launch's own Cd0 (at its Mach) and eq 3.11's air at the gun
+    (rho0 = 1.225 kg/m^3 at sea level, 1.225 exp(-k a) above); a site above sea level lowers
+    rho0 and raises r0 (the launch conditions hold at r0 = R + altitude)."""
+    for launch in (baseline_chapter_4(45.0), baseline_chapter_4(45.0, site_altitude_m=2000.0)):
+        solution = mks.for_launch(launch)
+        radius = earth.RADIUS_M + launch.site_altitude_m
+        beta = mks.decay_factor_beta(
+            launch.launch_drag_coefficient,
+            1.225 * np.exp(-1.17e-4 * launch.site_altitude_m),
+            BASELINE.reference_area_m2,
+            BASELINE.mass_kg,
+            launch.elevation_rad,
+        )
+        assert solution.beta[0, 0] == pytest.approx(beta, rel=1e-12)
+        assert solution.radius(0.0) == pytest.approx(radius, rel=1e-12)
+        assert solution.altitude(0.0) == pytest.approx(0.0, abs=1e-6)
+    high = mks.for_launch(baseline_chapter_4(45.0, site_altitude_m=2000.0))
+    assert high.beta[0, 0] < mks.for_launch(baseline_chapter_4(45.0)).beta[0, 0]
+
+
+@pytest.mark.parametrize("factor", [0.99, 1.01])
+def test_escape_follows_the_vacuum_escape_speed(factor):
+    """At beta = 0 the MKS is Kepler's conic: it escapes exactly above sqrt(2 GM / R)."""
+    speed = factor * ESCAPE_SPEED_M_S
+    solution = mks.ModifiedKeplerSolution(speed, ELEVATIONS, 0.0, 500.0, warn=False)
+    escapes = factor > 1
+    assert np.all(solution.escapes == escapes)
+    assert np.all(np.isnan(solution.apogee_altitude()) == escapes)
+    assert np.all(np.isnan(solution.impact_angle) == escapes)
+    energy = 0.5 * speed**2 - earth.GM_M3_S2 / earth.RADIUS_M
+    semi_major = -earth.GM_M3_S2 / (2 * energy)  # negative for a hyperbola
+    eccentricity = np.sqrt(
+        1 - (speed * earth.RADIUS_M * np.cos(ELEVATIONS)) ** 2 / (earth.GM_M3_S2 * semi_major)
+    )
+    assert solution.asymptotic_eccentricity == pytest.approx(eccentricity, rel=1e-9)
+    if not escapes:  # apogees beyond a quarter of the way round (c2 > 0) are found too
+        assert np.any(solution.c2 > 0)
+        conic = kepler.ballistic_conic(speed, ELEVATIONS)
+        assert solution.apogee_altitude() == pytest.approx(conic.apogee_altitude_m, rel=1e-9)
+        assert solution.impact_angle == pytest.approx(conic.range_angle_rad, rel=1e-9)
+
+
+def test_hyperbolic_launches_warn_with_a_reason():
+    # 12 km/s leaves the ground above escape speed, but the MKS's drag decay (h_inf) binds it:
+    # an apogee millions of km out, beyond the Earth's sphere of influence.
+    fast = Launch(BASELINE, 12000.0, 45.0)
+    assert fast.speed_m_s > ESCAPE_SPEED_M_S
+    with pytest.warns(ModelValidityWarning, match="sphere of influence"):
+        bound = mks.for_launch(fast)
+    assert not bound.escapes[0]
+    assert bound.apogee_altitude() > mks.EARTH_SPHERE_OF_INFLUENCE_M
+    # Faster still, the asymptotic angular momentum gives an escape orbit: no apogee at all.
+    with pytest.warns(ModelValidityWarning, match="escape orbit") as caught:
+        escaping = mks.for_launch(fast.but(speed_m_s=15000.0))
+    assert "no apogee" in str(caught[0].message)
+    assert escaping.escapes[0] and escaping.asymptotic_eccentricity[0] > 1
+    assert np.isnan(escaping.apogee_altitude()) and np.isnan(escaping.impact_angle)
+    with pytest.raises(ValueError, match="escapes"):
+        mks.simulate_mks(fast.but(speed_m_s=15000.0), warn=False)
+
+
+def test_grazing_elevation_fails_at_the_call_naming_the_elevation():
+    """At 0.001 deg beta (eq 3.22) is ~4000: h_inf = h0 exp(-beta) underflows. The call says
+    so, naming the elevation, instead of a NaN surfacing deep inside (no RuntimeWarning)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        for warn in (True, False):
+            with pytest.raises(ValueError, match="elevation"):
+                mks.for_launch(baseline_chapter_4(0.001), warn=warn)
+            with pytest.raises(ValueError, match="elevation"):
+                mks.simulate_mks(baseline_chapter_4(0.001), warn=warn)
+
+
+@pytest.fixture(scope="module")
+def barbados_shot():
+    """The baseline cone at 65 deg, fired at bearing 109 deg from 13 N, 59.5 W."""
+    launch = baseline_chapter_4(65.0, bearing_deg=109.0, latitude_deg=13.0, longitude_deg=-59.5)
+    return launch, mks.simulate_mks(launch)
+
+
+def test_simulate_mks_is_the_shared_table(barbados_shot):
+    launch, table = barbados_shot
+    assert set(trajectory.BASE_COLUMNS) <= set(table.columns)
+    assert set(trajectory.METADATA_KEYS) <= set(table.attrs)
+    assert table.attrs["engine"] == "MKS" and table.attrs["launch"] is launch
+    assert table.attrs["impact"] and table.attrs["stop_reason"] == "impact"
+    assert np.all(np.isfinite(table[list(trajectory.BASE_COLUMNS)].to_numpy()))
+    assert np.all(np.diff(table.time_s) > 0)
+
+
+def test_simulate_mks_apogee_and_impact_are_the_solution(barbados_shot):
+    launch, table = barbados_shot
+    solution = mks.for_launch(launch)
+    assert table.attrs["apogee_altitude_m"] == pytest.approx(solution.apogee_altitude(), rel=1e-12)
+    assert table.altitude_m.max() == pytest.approx(solution.apogee_altitude(), rel=1e-12)
+    assert table.attrs["apogee_ground_range_m"] == pytest.approx(
+        earth.RADIUS_M * solution.apogee_angle, rel=1e-12
+    )
+    assert table.attrs["range_m"] == pytest.approx(earth.RADIUS_M * solution.impact_angle)
+    assert table.altitude_m.iloc[-1] == pytest.approx(0.0, abs=1e-6)
+    grid = np.linspace(0.0, solution.impact_angle, 4001)
+    assert table.attrs["time_of_flight_s"] == pytest.approx(solution.time(grid)[-1], rel=1e-9)
+
+
+def test_simulate_mks_starts_at_the_launch_point_in_the_launch_plane(barbados_shot):
+    launch, table = barbados_shot
+    lat, lon, bearing = np.radians([13.0, -59.5, 109.0])
+    up = np.array([np.cos(lat) * np.cos(lon), np.cos(lat) * np.sin(lon), np.sin(lat)])
+    east = np.array([-np.sin(lon), np.cos(lon), 0.0])
+    north = np.cross(up, east)
+    downrange = np.sin(bearing) * east + np.cos(bearing) * north
+    first = table.iloc[0]
+    assert first[["x_m", "y_m", "z_m"]].to_numpy(float) == pytest.approx(
+        earth.RADIUS_M * up, abs=1e-6
+    )
+    assert first.time_s == 0.0
+    assert first.altitude_m == pytest.approx(0.0, abs=1e-6)
+    assert first.ground_range_m == 0.0 and first.cross_range_m == 0.0
+    assert first.speed_m_s == pytest.approx(2157.0, rel=1e-12)
+    assert first.flight_path_angle_rad == pytest.approx(np.radians(65.0), rel=1e-12)
+    assert first.specific_angular_momentum_m2_s == pytest.approx(
+        2157.0 * earth.RADIUS_M * np.cos(np.radians(65.0)), rel=1e-12
+    )
+    positions = table[["x_m", "y_m", "z_m"]].to_numpy()
+    radius = np.linalg.norm(positions, axis=1)
+    assert positions @ np.cross(downrange, up) == pytest.approx(0.0, abs=1e-6 * radius.max())
+    angle = np.arctan2(positions @ downrange, positions @ up)
+    assert earth.RADIUS_M * angle == pytest.approx(
+        table.ground_range_m.to_numpy(), rel=1e-9, abs=1e-6
+    )
+    assert radius - earth.RADIUS_M == pytest.approx(table.altitude_m.to_numpy(), abs=1e-6)

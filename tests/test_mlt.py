@@ -2,7 +2,11 @@
 limit as segments shrink (second order with mid-segment coefficients, first order with
 start-of-segment ones), McCoy's epicyclic roots from the raw M829 tables, the exact parabola
 and the Kepler conic in vacuum, the 6DOF's no-roll derivatives minus exactly the products
-that eq L1 drops, the closed-form segment's own derivative, the output table and bad input."""
+that eq L1 drops, the closed-form segment's own derivative, the output table and its shared
+metadata, truncated flights, the launches MLT refuses and bad input.
+
+Flights are Chapter 2 A's launch (50 deg, 2022 m/s, 10 rad/s of spin, a 5 m/s cross wind:
+launch.chapter_2) unless they say otherwise."""
 
 import dataclasses
 import math
@@ -14,8 +18,9 @@ import pytest
 from harp_analysis import earth, kepler, mlt, sixdof
 from harp_analysis.atmosphere import get_atmosphere
 from harp_analysis.drag import M829
-from harp_analysis.projectiles import BASELINE, HP, LP
-from harp_analysis.trajectory import BASE_COLUMNS
+from harp_analysis.launch import LP_CHAPTER_2, baseline_chapter_4, chapter_2
+from harp_analysis.projectiles import HP, LP
+from harp_analysis.trajectory import BASE_COLUMNS, METADATA_KEYS, TruncatedFlightWarning
 from harp_analysis.validation import ModelValidityWarning
 
 R, GM = earth.RADIUS_M, earth.GM_M3_S2
@@ -37,7 +42,7 @@ SEGMENTS_M = (2000.0, 1000.0, 500.0, 100.0)
 @pytest.fixture(scope="module")
 def limit():
     """The linear-theory equations integrated tightly: what MLT must converge to."""
-    return mlt.simulate_linear_theory_limit(LP, rtol=1e-11)
+    return mlt.simulate_linear_theory_limit(LP_CHAPTER_2, rtol=1e-11)
 
 
 def _position_error(flight, reference):
@@ -60,7 +65,9 @@ def test_segments_converge_to_the_linear_theory_limit(limit, coefficients_at, or
     midpoint (trapezoid) rule: error O(L^2); at its start, the rectangle rule: O(L)."""
     position, range_error = {}, {}
     for length in SEGMENTS_M:
-        flight = mlt.simulate_mlt(LP, segment_length_m=length, coefficients_at=coefficients_at)
+        flight = mlt.simulate_mlt(
+            LP_CHAPTER_2, segment_length_m=length, coefficients_at=coefficients_at
+        )
         position[length] = _position_error(flight, limit)
         range_error[length] = abs(flight.attrs["range_m"] - limit.attrs["range_m"])
     order = math.log10(range_error[1000.0] / range_error[100.0])
@@ -147,7 +154,10 @@ def test_epicyclic_roots_are_mccoys(projectile, altitude, speed, spin):
 def test_vacuum_uniform_gravity_is_the_exact_parabola(length):
     """Without air and with constant gravity eqs L2-L7 are exact at any segment length."""
     flight = mlt.simulate_mlt(
-        LP, aerodynamics=False, gravity="uniform", crosswind_m_s=0.0, segment_length_m=length
+        chapter_2(LP, cross_wind_m_s=0.0),
+        aerodynamics=False,
+        gravity="uniform",
+        segment_length_m=length,
     )
     t = flight.time_s.to_numpy()
     x = 2022.0 * math.cos(ELEVATION) * t
@@ -167,7 +177,7 @@ def test_vacuum_central_gravity_converges_to_the_kepler_conic():
     conic = kepler.ballistic_conic(2022.0, ELEVATION)
     apogee, time_of_flight = {}, {}
     for length in (2000.0, 500.0, 100.0):
-        attrs = mlt.simulate_mlt(LP, aerodynamics=False, segment_length_m=length).attrs
+        attrs = mlt.simulate_mlt(LP_CHAPTER_2, aerodynamics=False, segment_length_m=length).attrs
         apogee[length] = abs(attrs["apogee_altitude_m"] - conic.apogee_altitude_m)
         time_of_flight[length] = abs(attrs["time_of_flight_s"] - conic.time_of_flight_s)
         print(
@@ -298,7 +308,7 @@ def test_closed_form_segment_has_the_linear_theory_derivative():
 
 # --- bad input and validity ------------------------------------------------------------------
 @pytest.mark.parametrize(
-    "kwargs, match",
+    "options, match",
     [
         ({"segment_length_m": 0.0}, "segment_length_m"),
         ({"segment_length_m": -5.0}, "segment_length_m"),
@@ -307,19 +317,67 @@ def test_closed_form_segment_has_the_linear_theory_derivative():
         ({"segment_length_m": 1e7}, "longer than the flight"),
         ({"coefficients_at": "end"}, "coefficients_at"),
         ({"gravity": "flat"}, "gravity"),
-        ({"elevation_deg": 0.0}, "elevation_deg"),
-        ({"elevation_deg": 90.0}, "elevation_deg"),
-        ({"elevation_deg": 95.0}, "elevation_deg"),
+        ({"density_altitude": "round"}, "density_altitude"),
+        ({"max_time_s": 0.0}, "max_time_s"),
+        ({"output_step_s": -0.5}, "output_step_s"),
     ],
 )
-def test_bad_input_is_named(kwargs, match):
+def test_bad_input_is_named(options, match):
     with pytest.raises(ValueError, match=match):
-        mlt.simulate_mlt(LP, **kwargs)
+        mlt.simulate_mlt(LP_CHAPTER_2, **options)
+
+
+@pytest.mark.parametrize(
+    "options, match",
+    [
+        ({"density_altitude": "round"}, "density_altitude"),
+        ({"rtol": 0.0}, "rtol"),
+        ({"max_time_s": -1.0}, "max_time_s"),
+        ({"output_step_s": 0.0}, "output_step_s"),
+    ],
+)
+def test_bad_linear_theory_limit_input_is_named(options, match):
+    with pytest.raises(ValueError, match=match):
+        mlt.simulate_linear_theory_limit(LP_CHAPTER_2, **options)
+
+
+@pytest.mark.parametrize(
+    "changes", [{"elevation_deg": 0.0}, {"elevation_deg": 95.0}, {"elevation_deg": math.nan}]
+)
+def test_bad_elevation_is_named_when_the_launch_is_built(changes):
+    with pytest.raises(ValueError, match="elevation_deg"):
+        chapter_2(LP, **changes)
+
+
+_ENGINES = {"MLT": mlt.simulate_mlt, "linear-theory limit": mlt.simulate_linear_theory_limit}
+
+
+@pytest.mark.parametrize("engine", _ENGINES)
+@pytest.mark.parametrize(
+    "changes, name",
+    [
+        ({"elevation_deg": 90.0}, "elevation_deg"),  # a valid launch at the Euler singularity
+        ({"rotation_rate_rad_s": earth.ROTATION_RATE_RAD_S}, "rotation_rate_rad_s"),
+        ({"site_altitude_m": 100.0}, "site_altitude_m"),
+    ],
+)
+def test_launch_mlt_cannot_fly_is_refused_by_name(engine, changes, name):
+    launch = LP_CHAPTER_2.but(**changes)
+    with pytest.raises(ValueError, match=name):
+        _ENGINES[engine](launch)
+
+
+@pytest.mark.parametrize("engine", _ENGINES)
+def test_only_a_launch_is_flown(engine):
+    with pytest.raises(TypeError, match="Launch"):
+        _ENGINES[engine](LP)
+    with pytest.raises(TypeError):  # the old keywords are now fields of the Launch
+        _ENGINES[engine](LP_CHAPTER_2, crosswind_m_s=5.0)
 
 
 def test_projectile_without_aerodynamics_is_named():
     with pytest.raises(ValueError, match="projectile 'baseline' has no aero"):
-        mlt.simulate_mlt(BASELINE)
+        mlt.simulate_mlt(baseline_chapter_4(50.0))
 
 
 def test_statically_unstable_projectile_is_flagged():
@@ -330,22 +388,26 @@ def test_statically_unstable_projectile_is_flagged():
     # The divergent closed form overflows the air's exponential on the way (np.errstate):
     # the flight after the warning is not physical and is not checked here.
     with pytest.warns(ModelValidityWarning, match="angle of attack"), np.errstate(over="ignore"):
-        mlt.simulate_mlt(unstable)
+        mlt.simulate_mlt(chapter_2(unstable))
 
 
 def test_reference_flight_is_within_linear_theory():
     with warnings.catch_warnings():
         warnings.simplefilter("error", ModelValidityWarning)
-        flight = mlt.simulate_mlt(LP)
+        flight = mlt.simulate_mlt(LP_CHAPTER_2)
     assert flight.angle_of_attack_rad.max() < math.radians(mlt.MAX_SMALL_ANGLE_DEG)
 
 
 # --- the output table ------------------------------------------------------------------------
 def test_flight_table_matches_the_6dof():
-    flight = mlt.simulate_mlt(LP)
-    six = sixdof.simulate_6dof(LP, max_time_s=1.0, output_step_s=0.5)
+    flight = mlt.simulate_mlt(LP_CHAPTER_2)
+    with pytest.warns(TruncatedFlightWarning):
+        six = sixdof.simulate_6dof(LP_CHAPTER_2, max_time_s=1.0, output_step_s=0.5)
     assert tuple(flight.columns) == tuple(six.columns) == BASE_COLUMNS + sixdof.EXTRA_COLUMNS
     attrs = flight.attrs
+    assert set(METADATA_KEYS) <= set(attrs) and set(METADATA_KEYS) <= set(six.attrs)
+    assert attrs["engine"] == "MLT" and attrs["launch"] == LP_CHAPTER_2
+    assert attrs["stop_reason"] == "impact"
     assert attrs["impact"] is True and abs(flight.altitude_m.iloc[-1]) < 1e-6
     assert attrs["time_of_flight_s"] == flight.time_s.iloc[-1]
     assert np.allclose(np.diff(flight.time_s.iloc[:-1]), 0.5)
@@ -354,13 +416,58 @@ def test_flight_table_matches_the_6dof():
     # Each segment is 1000 m of (air-relative) arc: the path length counts the segments.
     speed = flight.speed_m_s.to_numpy()
     arc = float(np.sum(np.diff(flight.time_s) * (speed[1:] + speed[:-1]) / 2))
-    assert attrs["n_segments"] - 1 < arc / 1000.0 * (1 + 1e-3) + 1e-9
-    assert arc / 1000.0 * (1 - 1e-3) < attrs["n_segments"]
+    assert attrs["steps"] - 1 < arc / 1000.0 * (1 + 1e-3) + 1e-9
+    assert arc / 1000.0 * (1 - 1e-3) < attrs["steps"]
     assert flight.mach.iloc[0] == pytest.approx(
         math.hypot(2022.0, 5.0) / float(AIR.speed_of_sound(0.0))
     )
 
 
+@pytest.mark.parametrize(
+    "coefficients_at, per_segment", [("start", 1), ("middle", 2), ("average", 2)]
+)
+def test_rhs_evaluations_count_the_coefficient_evaluations(
+    monkeypatch, coefficients_at, per_segment
+):
+    """Eq L8: the start's coefficients for the first pass, then the middle's or the end's."""
+    calls, original = [], mlt.segment_coefficients
+
+    def counted(*args, **kwargs):
+        calls.append(args[1])
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(mlt, "segment_coefficients", counted)
+    attrs = mlt.simulate_mlt(LP_CHAPTER_2, coefficients_at=coefficients_at).attrs
+    assert attrs["rhs_evaluations"] == len(calls) == per_segment * attrs["steps"]
+
+
+def test_linear_theory_limit_carries_the_shared_metadata(limit):
+    attrs = limit.attrs
+    assert set(METADATA_KEYS) <= set(attrs)
+    assert attrs["engine"] == "linear-theory limit" and attrs["launch"] == LP_CHAPTER_2
+    assert attrs["stop_reason"] == "impact" and attrs["impact"] is True
+    assert abs(limit.altitude_m.iloc[-1]) < 1e-6
+    # The apogee event lies between the rows: at or above the highest, within a metre of it.
+    assert 0.0 <= attrs["apogee_altitude_m"] - limit.altitude_m.max() < 1.0
+    top = limit.time_s[limit.altitude_m.idxmax()]
+    assert abs(attrs["apogee_time_s"] - top) <= 0.25
+
+
+@pytest.mark.parametrize("engine", _ENGINES)
+def test_flight_cut_off_by_max_time_warns_and_says_why(engine):
+    """Before its apogee: no impact, the table ends at max_time_s, no apogee recorded."""
+    with pytest.warns(TruncatedFlightWarning, match="max_time_s = 20 s"):
+        flight = _ENGINES[engine](LP_CHAPTER_2, max_time_s=20.0, output_step_s=5.0)
+    attrs = flight.attrs
+    assert set(METADATA_KEYS) <= set(attrs) and attrs["engine"] == engine
+    assert attrs["stop_reason"] == "max_time" and attrs["impact"] is False
+    assert math.isnan(attrs["apogee_time_s"]) and math.isnan(attrs["apogee_altitude_m"])
+    assert list(flight.time_s) == pytest.approx([0.0, 5.0, 10.0, 15.0, 20.0], abs=1e-9)
+    assert attrs["time_of_flight_s"] == pytest.approx(20.0, abs=1e-9)
+    assert attrs["range_m"] == flight.ground_range_m.iloc[-1] > 0.0
+    assert flight.altitude_m.iloc[-1] > 10e3
+
+
 def test_segments_longer_than_the_updates_of_linear_theory_warn():
     with pytest.warns(ModelValidityWarning, match="segment_length_m = 20000 m"):
-        mlt.simulate_mlt(LP, segment_length_m=20_000.0)
+        mlt.simulate_mlt(LP_CHAPTER_2, segment_length_m=20_000.0)

@@ -11,14 +11,18 @@ from scipy.integrate import solve_ivp
 
 from harp_analysis import earth, kepler, mks
 from harp_analysis import nonlinear_kepler as nk
-from harp_analysis.projectiles import BASELINE, HP
+from harp_analysis.atmosphere import get_atmosphere
+from harp_analysis.launch import HP_CHAPTER_2, baseline_chapter_4
+from harp_analysis.projectiles import HP
 
 ELEVATIONS_DEG = (30.0, 45.0, 65.0, 85.0)
+#: Chapter 2 A's HP at 50 deg and 2022 m/s, without its wind (the MKS has none).
+HP_50 = HP_CHAPTER_2.but(cross_wind_m_s=0.0)
 
 
 @pytest.fixture(scope="module")
 def hp50():
-    return mks.for_projectile(HP, 50.0, warn=False)
+    return mks.for_launch(HP_50, warn=False)
 
 
 @pytest.mark.parametrize("form", nk.FORMS)
@@ -33,7 +37,9 @@ def test_beta_zero_is_the_kepler_conic(form, elevation_deg):
 
 def test_eq_3_29_with_tan_phi_of_eq_3_28_is_eq_3_25(hp50):
     a, b = nk.solve(hp50, "eq_3_25"), nk.solve(hp50, "eq_3_29")
-    theta = np.linspace(0.0, a.impact_angle, 50)
+    assert b.impact_angle == pytest.approx(a.impact_angle, rel=1e-10)
+    # each solution ends at its own impact event, equal to the last few ulps either way
+    theta = np.linspace(0.0, min(a.impact_angle, b.impact_angle), 50)
     assert b.u(theta) == pytest.approx(a.u(theta), rel=1e-10)
 
 
@@ -146,18 +152,17 @@ def test_natural_frequency_starts_high_and_decays_to_one(hp50):
 def test_initial_natural_frequency_does_not_depend_on_k():
     """tau beta = r0 Cd0 rho0 A / (2 m cos phi0): k cancels."""
     values = [
-        nk.initial_natural_frequency(
-            mks.for_projectile(HP, 50.0, warn=False, decay_constant_per_m=k)
-        )
+        nk.initial_natural_frequency(mks.for_launch(HP_50, warn=False, decay_constant_per_m=k))
         for k in (0.117e-3, 0.14e-3)
     ]
     assert values[0] == pytest.approx(values[1], rel=1e-12)
-    # By hand from eqs 3.22, 3.27 and 3.29: Cd0 = -CX0 at launch, rho0 = 1.225, tan(50 deg).
-    from harp_analysis.atmosphere import get_atmosphere
-
+    # By hand from eqs 3.22, 3.27 and 3.29: Cd0 = -CX0 at launch, rho0 of eq 3.11
+    # (1.225 kg/m^3), tan(50 deg).
+    air = get_atmosphere("two_segment")
     phi = np.radians(50.0)
-    cd0 = HP.drag_law(2022.0 / get_atmosphere("two_segment").speed_of_sound(0.0))
-    tau_beta = earth.RADIUS_M * cd0 * 1.225 * HP.reference_area_m2 / (2 * HP.mass_kg * np.cos(phi))
+    cd0 = HP.drag_law(2022.0 / air.speed_of_sound(0.0))
+    rho0 = 1.225
+    tau_beta = earth.RADIUS_M * cd0 * rho0 * HP.reference_area_m2 / (2 * HP.mass_kg * np.cos(phi))
     assert values[0] == pytest.approx(np.sqrt(1 + tau_beta * np.tan(phi)), rel=1e-9)
 
 
@@ -175,11 +180,15 @@ def test_driving_rates(hp50):
 
 
 def test_bad_input_is_named(hp50):
-    many = mks.for_projectile(BASELINE, [45.0, 50.0], warn=False)
+    many = mks.for_launch([baseline_chapter_4(45.0), baseline_chapter_4(50.0)], warn=False)
     with pytest.raises(ValueError, match="form"):
         nk.solve(hp50, "eq_3_31")
     with pytest.raises(ValueError, match="n_terms"):
         nk.solve(hp50, n_terms=0)
+    with pytest.raises(ValueError, match="n_terms"):
+        nk.solve(hp50, n_terms=2.5)
+    with pytest.raises(ValueError, match="n_terms"):
+        nk.driving_rates(hp50, 2.5)
     with pytest.raises(ValueError, match="theta_max_rad"):
         nk.solve(hp50, theta_max_rad=-1.0)
     with pytest.raises(ValueError, match="single launch"):
@@ -192,3 +201,16 @@ def test_bad_input_is_named(hp50):
         nk.frequency_response(1.0, 0.0)
     with pytest.raises(ValueError, match="tan_phi"):
         nk.natural_frequency(hp50, 0.0, tan_phi=-1.0)
+
+
+@pytest.mark.parametrize("form", ["eq_3_25", "eq_3_30"])
+def test_solve_for_launch_is_solve_of_the_launch_mks(hp50, form):
+    by_launch = nk.solve_for_launch(HP_50, form)
+    direct = nk.solve(hp50, form)
+    assert by_launch.apogee_altitude() == pytest.approx(direct.apogee_altitude(), rel=1e-12)
+    assert by_launch.impact_angle == pytest.approx(direct.impact_angle, rel=1e-12)
+    # options of the MKS pass through: a thinner atmosphere scale changes the launch
+    other = nk.solve_for_launch(HP_50, form, decay_constant_per_m=0.14e-3)
+    assert other.apogee_altitude() != pytest.approx(direct.apogee_altitude(), rel=1e-6)
+    with pytest.raises(TypeError, match="Launch"):
+        nk.solve_for_launch(HP, form)

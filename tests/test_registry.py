@@ -8,7 +8,7 @@ import pytest
 from harp_analysis import paths, registry
 
 ENTRIES = registry.load_registry()
-REPOSITORY_FIGURES = paths.ROOT / "figures"
+REPOSITORY_FIGURES = paths.COMMITTED_FIGURES_DIR
 DISSERTATION = paths.ROOT.parent / "shared" / "dissertation" / "000_5344a0ab06f4edea.txt"
 
 

@@ -1,6 +1,7 @@
 """The 6DOF of Appendix B against independent physics: the no-roll reformulation against the
 body-frame port, the adaptive solver against Appendix B's own RK4, closed-form Kepler orbits in
-vacuum, mirror symmetry, the roll equilibrium of the fins and the point-mass 3DOF."""
+vacuum, mirror symmetry, the roll equilibrium of the fins and the point-mass 3DOF; the shared
+metadata, truncated flights and the launches the 6DOF refuses."""
 
 import dataclasses
 import math
@@ -11,10 +12,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from harp_analysis import earth, sixdof, threedof
-from harp_analysis.atmosphere import AtmosphereModel, get_atmosphere
+from harp_analysis.atmosphere import get_atmosphere
 from harp_analysis.drag import M829
+from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, Launch, chapter_2
 from harp_analysis.projectiles import HP, LP
-from harp_analysis.trajectory import BASE_COLUMNS
+from harp_analysis.trajectory import BASE_COLUMNS, METADATA_KEYS, TruncatedFlightWarning
+from harp_analysis.validation import ModelValidityWarning
 
 R, GM = earth.RADIUS_M, earth.GM_M3_S2
 
@@ -143,12 +146,15 @@ def rk4_runs():
 
 @pytest.fixture(scope="module")
 def adaptive_first_second():
-    return sixdof.simulate_6dof(HP, max_time_s=_SPAN_S, output_step_s=_SPAN_S)
+    # Chapter 2 A's launch (50 deg, 2022 m/s, 10 rad/s, 5 m/s cross wind), as the RK4's.
+    with pytest.warns(TruncatedFlightWarning):
+        return sixdof.simulate_6dof(HP_CHAPTER_2, max_time_s=_SPAN_S, output_step_s=_SPAN_S)
 
 
 def test_adaptive_no_roll_solution_matches_appendix_b_rk4(rk4_runs, adaptive_first_second):
     end = adaptive_first_second.iloc[-1]
     assert end.time_s == _SPAN_S and not adaptive_first_second.attrs["impact"]
+    assert adaptive_first_second.attrs["stop_reason"] == "max_time"
     rk4 = rk4_runs[0.0005]
     position = end[["x_m", "y_m", "z_m"]].to_numpy(float)
     assert np.max(np.abs(position - rk4[:3])) < 3e-3  # Appendix B's own h: within 3 mm
@@ -185,10 +191,9 @@ def test_fixed_step_rk4_is_fourth_order():
 # --- vacuum: the closed-form Kepler orbit ------------------------------------------------------
 @pytest.fixture(scope="module")
 def vacuum_flight():
-    no_air = AtmosphereModel(
-        "no_air", lambda a: 0 * a, get_atmosphere("two_segment").sound_kernel, "test: density zero"
-    )
-    return sixdof.simulate_6dof(HP, atmosphere=no_air, rtol=1e-11)
+    # Density zero, eqs 2.1-2.2's speed of sound; Chapter 2 A's launch, cross wind included.
+    assert float(get_atmosphere("vacuum").density(1e4)) == 0.0
+    return sixdof.simulate_6dof(chapter_2(HP, atmosphere="vacuum"), rtol=1e-11)
 
 
 def test_vacuum_flight_conserves_energy_and_angular_momentum(vacuum_flight):
@@ -227,19 +232,27 @@ def _mirrored(projectile):
 @pytest.fixture(scope="module")
 def flights():
     return {
-        "wind": sixdof.simulate_6dof(HP),
-        "calm": sixdof.simulate_6dof(HP, crosswind_m_s=0.0),
-        "calm_mirrored": sixdof.simulate_6dof(_mirrored(HP), spin_rad_s=-10.0, crosswind_m_s=0.0),
-        "spherical": sixdof.simulate_6dof(HP, density_altitude="spherical"),
+        "wind": sixdof.simulate_6dof(HP_CHAPTER_2),
+        "calm": sixdof.simulate_6dof(chapter_2(HP, cross_wind_m_s=0.0)),
+        "calm_mirrored": sixdof.simulate_6dof(
+            chapter_2(_mirrored(HP), spin_rad_s=-10.0, cross_wind_m_s=0.0)
+        ),
+        "spherical": sixdof.simulate_6dof(HP_CHAPTER_2, density_altitude="spherical"),
     }
 
 
 def test_flight_table_and_statistics(flights):
     flight = flights["wind"]
     assert tuple(flight.columns) == BASE_COLUMNS + sixdof.EXTRA_COLUMNS
+    assert set(METADATA_KEYS) <= set(flight.attrs)
+    assert flight.attrs["engine"] == "6DOF" and flight.attrs["launch"] == HP_CHAPTER_2
+    assert flight.attrs["stop_reason"] == "impact"
+    assert 0 < flight.attrs["steps"] < flight.attrs["rhs_evaluations"]
+    assert flight.attrs["time_of_flight_s"] == flight.time_s.iloc[-1]
     assert flight.attrs["impact"] and abs(flight.altitude_m.iloc[-1]) < 1e-6
     assert np.allclose(np.diff(flight.time_s.iloc[:-1]), 0.5)
-    assert flight.attrs["n_rhs"] < 100_000  # the no-roll frame: no spin-rate oscillation
+    # The no-roll frame: no spin-rate oscillation.
+    assert flight.attrs["rhs_evaluations"] < 100_000
     assert flight.attrs["apogee_altitude_m"] == pytest.approx(flight.altitude_m.max(), abs=5.0)
     assert flight.mach.iloc[0] == pytest.approx(
         math.hypot(2022.0, 5.0) / get_atmosphere("two_segment").speed_of_sound(0.0)
@@ -264,6 +277,18 @@ def test_cross_wind_drifts_downwind(flights):
     assert drift.iloc[-1] > 100.0  # hundreds of metres over 240 km from a 5 m/s wind
 
 
+def test_head_wind_blows_against_the_line_of_fire():
+    """The head wind adds to the air speed along the line of fire (-x in the flat frame)."""
+    launch = chapter_2(HP, cross_wind_m_s=0.0, head_wind_m_s=10.0)
+    with pytest.warns(TruncatedFlightWarning):
+        flight = sixdof.simulate_6dof(launch, max_time_s=1.0, output_step_s=1.0)
+    elevation = math.radians(50.0)
+    air_speed = math.hypot(2022.0 * math.cos(elevation) + 10.0, 2022.0 * math.sin(elevation))
+    sound = get_atmosphere("two_segment").speed_of_sound(0.0)
+    assert flight.mach.iloc[0] == pytest.approx(air_speed / sound, rel=1e-12)
+    assert flight.speed_m_s.iloc[0] == pytest.approx(2022.0, rel=1e-12)
+
+
 def test_fins_spin_the_projectile_to_the_roll_equilibrium(flights):
     """Roll driving against roll damping: p d / (2V) -> -CLDD / CLP within about a second."""
     flight = flights["wind"]
@@ -279,7 +304,7 @@ def test_aerodynamically_stable_flight_is_the_point_mass_3dof(flights):
     """Chapter 2 B: the fin-stabilised projectile keeps a small angle of attack in the air, so
     the 3DOF with the zero-yaw drag -CX0 flies the same trajectory (same spherical air)."""
     six = flights["spherical"].attrs
-    three = threedof.simulate_3dof(HP, 50.0, cross_wind_m_s=5.0, output_step_s=10.0).attrs
+    three = threedof.simulate_3dof(HP_CHAPTER_2, output_step_s=10.0).attrs
     assert six["apogee_altitude_m"] == pytest.approx(three["apogee_altitude_m"], rel=2e-4)
     assert six["range_m"] == pytest.approx(three["range_m"], rel=2e-4)
     assert six["time_of_flight_s"] == pytest.approx(three["time_of_flight_s"], rel=2e-4)
@@ -297,10 +322,19 @@ def test_flat_density_altitude_thickens_the_descent(flights):
 
 
 # --- ends and bad input -----------------------------------------------------------------------
-def test_short_flight_ends_cleanly_without_impact():
-    flight = sixdof.simulate_6dof(LP, max_time_s=20.0, output_step_s=5.0)
-    assert not flight.attrs["impact"] and math.isnan(flight.attrs["apogee_time_s"])
+def test_flight_cut_off_by_max_time_warns_and_says_why():
+    """Before its apogee: no impact, the table ends at max_time_s, the range is the last row's."""
+    assert issubclass(TruncatedFlightWarning, ModelValidityWarning)
+    with pytest.warns(TruncatedFlightWarning, match="max_time_s = 20 s"):
+        flight = sixdof.simulate_6dof(LP_CHAPTER_2, max_time_s=20.0, output_step_s=5.0)
+    attrs = flight.attrs
+    assert set(METADATA_KEYS) <= set(attrs)
+    assert attrs["stop_reason"] == "max_time" and attrs["impact"] is False
+    assert math.isnan(attrs["apogee_time_s"]) and math.isnan(attrs["apogee_altitude_m"])
     assert list(flight.time_s) == [0.0, 5.0, 10.0, 15.0, 20.0]
+    assert attrs["time_of_flight_s"] == 20.0
+    assert attrs["range_m"] == flight.ground_range_m.iloc[-1] > 0.0
+    assert flight.altitude_m.iloc[-1] > 10e3
 
 
 def _without(name):
@@ -308,26 +342,67 @@ def _without(name):
 
 
 @pytest.mark.parametrize(
-    "kwargs, name",
+    "changes, name",
     [
         ({"elevation_deg": 0.0}, "elevation_deg"),
         ({"elevation_deg": 91.0}, "elevation_deg"),
-        ({"elevation_deg": 90.0}, "elevation_deg"),
         ({"elevation_deg": np.nan}, "elevation_deg"),
         ({"speed_m_s": 0.0}, "speed_m_s"),
         ({"speed_m_s": -2022.0}, "speed_m_s"),
         ({"spin_rad_s": np.nan}, "spin_rad_s"),
-        ({"crosswind_m_s": np.inf}, "crosswind_m_s"),
+        ({"cross_wind_m_s": np.inf}, "cross_wind_m_s"),
+        ({"head_wind_m_s": np.nan}, "head_wind_m_s"),
         ({"atmosphere": "martian"}, "atmosphere"),
+    ],
+)
+def test_bad_launch_is_named_when_the_launch_is_built(changes, name):
+    with pytest.raises(ValueError, match=name):
+        chapter_2(HP, **changes)
+    with pytest.raises(ValueError, match=name):
+        HP_CHAPTER_2.but(**changes)
+
+
+@pytest.mark.parametrize(
+    "changes, name",
+    [
+        ({"elevation_deg": 90.0}, "elevation_deg"),  # a valid launch at the Euler singularity
+        ({"rotation_rate_rad_s": earth.ROTATION_RATE_RAD_S}, "rotation_rate_rad_s"),
+        ({"rotation_rate_rad_s": -earth.ROTATION_RATE_RAD_S}, "rotation_rate_rad_s"),
+        ({"site_altitude_m": 100.0}, "site_altitude_m"),
+        ({"site_altitude_m": -10.0}, "site_altitude_m"),
+    ],
+)
+def test_launch_the_6dof_cannot_fly_is_refused_by_name(changes, name):
+    launch = HP_CHAPTER_2.but(**changes)
+    with pytest.raises(ValueError, match=name):
+        sixdof.simulate_6dof(launch)
+
+
+@pytest.mark.parametrize(
+    "options, name",
+    [
         ({"density_altitude": "round"}, "density_altitude"),
         ({"rtol": 0.0}, "rtol"),
         ({"max_time_s": -1.0}, "max_time_s"),
         ({"output_step_s": 0.0}, "output_step_s"),
     ],
 )
-def test_bad_simulation_input_is_named(kwargs, name):
+def test_bad_simulation_option_is_named(options, name):
     with pytest.raises(ValueError, match=name):
-        sixdof.simulate_6dof(HP, **kwargs)
+        sixdof.simulate_6dof(HP_CHAPTER_2, **options)
+
+
+def test_only_a_launch_is_flown():
+    with pytest.raises(TypeError, match="Launch"):
+        sixdof.simulate_6dof(HP)
+    with pytest.raises(TypeError, match="Launch"):
+        sixdof.simulate_6dof("HP")
+    with pytest.raises(TypeError, match="projectile"):
+        Launch("HP", 2022.0, 50.0)
+    with pytest.raises(TypeError, match="elevation_deg"):
+        Launch(HP, 2022.0, "50")
+    with pytest.raises(TypeError):  # the old keywords are now fields of the Launch
+        sixdof.simulate_6dof(HP_CHAPTER_2, crosswind_m_s=5.0)
 
 
 @pytest.mark.parametrize(
@@ -335,7 +410,7 @@ def test_bad_simulation_input_is_named(kwargs, name):
 )
 def test_projectile_without_6dof_data_is_named(missing):
     with pytest.raises(ValueError, match=f"projectile 'HP' has no {missing}"):
-        sixdof.simulate_6dof(_without(missing))
+        sixdof.simulate_6dof(chapter_2(_without(missing)))
     with pytest.raises(ValueError, match=missing):
         sixdof.appendix_b_derivatives(np.zeros(12), _without(missing))
 

@@ -1,19 +1,29 @@
 """The 3DOF simulation against independent physics: closed-form Kepler orbits in vacuum,
 conservation laws, symmetry, scipy's own integrator, and convergence under refinement."""
 
+import dataclasses
+import math
+import warnings
+
 import numpy as np
 import pytest
+from hypothesis import example, given, settings
+from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
-from harp_analysis import earth, kepler, threedof
+from harp_analysis import earth, kepler, threedof, trajectory
 from harp_analysis.drag import BASELINE_CONE, M829, TabulatedDragLaw, get_drag_law
-from harp_analysis.projectiles import BASELINE, HP, get_projectile
+from harp_analysis.launch import Launch
+from harp_analysis.projectiles import BASELINE, HP, Projectile, get_projectile
 from harp_analysis.validation import ModelValidityWarning
+
+#: Chapter 4 B's baseline cone at 2157 m/s and 45 deg, no wind, two-segment air.
+BASELINE_45 = Launch(BASELINE, 2157.0, 45.0)
 
 
 @pytest.fixture(scope="module")
 def vacuum_flight():
-    return threedof.simulate_3dof(BASELINE, 45.0, atmosphere="vacuum", rtol=1e-12)
+    return threedof.simulate_3dof(Launch(BASELINE, 2157.0, 45.0, atmosphere="vacuum"), rtol=1e-12)
 
 
 def test_vacuum_flight_is_the_closed_form_kepler_orbit(vacuum_flight):
@@ -38,15 +48,16 @@ def test_rotating_earth_in_vacuum_flies_the_inertial_conic():
     """On a rotating Earth the inertial launch velocity is the ground velocity plus the
     surface's (omega R cos(latitude), eastward); in vacuum that fixes the conic."""
     omega = earth.ROTATION_RATE_RAD_S
-    flight = threedof.simulate_3dof(
+    launch = Launch(
         BASELINE,
+        2157.0,
         60.0,
         latitude_deg=0.0,
         bearing_deg=90.0,
         atmosphere="vacuum",
         rotation_rate_rad_s=omega,
-        rtol=1e-12,
     )
+    flight = threedof.simulate_3dof(launch, rtol=1e-12)
     east, up = (
         2157.0 * np.cos(np.radians(60.0)) + omega * earth.RADIUS_M,
         2157.0 * np.sin(np.radians(60.0)),
@@ -61,11 +72,38 @@ def test_rotating_earth_in_vacuum_flies_the_inertial_conic():
     )
 
 
+def test_raised_site_in_vacuum_flies_the_conic_from_its_radius():
+    """From a site 1000 m up the flight is the Kepler conic of radius R + 1000 m, back down to
+    that radius; energy is conserved along it."""
+    flight = threedof.simulate_3dof(
+        Launch(BASELINE, 2157.0, 45.0, site_altitude_m=1000.0, atmosphere="vacuum"), rtol=1e-12
+    )
+    conic = kepler.ballistic_conic(2157.0, np.radians(45.0), radius_m=earth.RADIUS_M + 1000.0)
+    attrs = flight.attrs
+    assert flight.altitude_m.iloc[0] == pytest.approx(1000.0, abs=1e-6)
+    assert abs(flight.altitude_m.iloc[-1] - 1000.0) < 1e-3
+    assert attrs["apogee_altitude_m"] == pytest.approx(conic.apogee_altitude_m, rel=1e-6)
+    assert attrs["range_m"] == pytest.approx(conic.ground_range_m, rel=1e-6)
+    assert attrs["time_of_flight_s"] == pytest.approx(conic.time_of_flight_s, rel=1e-6)
+    assert attrs["apogee_time_s"] == pytest.approx(conic.time_to_apogee_s, rel=1e-6)
+    radius = flight.altitude_m + earth.RADIUS_M
+    energy = 0.5 * flight.speed_m_s**2 - earth.GM_M3_S2 / radius
+    assert np.ptp(energy) / abs(energy.mean()) < 1e-9
+
+
+def test_raised_site_in_air_lands_back_at_the_site_altitude():
+    raised = threedof.simulate_3dof(BASELINE_45.but(site_altitude_m=1000.0), output_step_s=5.0)
+    assert raised.altitude_m.iloc[0] == pytest.approx(1000.0, abs=1e-6)
+    assert abs(raised.altitude_m.iloc[-1] - 1000.0) < 1e-3
+    assert raised.attrs["stop_reason"] == "impact"
+    # Thinner air at the gun: it flies higher than the same shot from sea level.
+    sea_level = threedof.simulate_3dof(BASELINE_45, output_step_s=5.0)
+    assert raised.attrs["apogee_altitude_m"] > sea_level.attrs["apogee_altitude_m"] + 1000.0
+
+
 @pytest.fixture(scope="module")
 def baseline_flights():
-    return {
-        rtol: threedof.simulate_3dof(BASELINE, 45.0, rtol=rtol) for rtol in (1e-8, 1e-10, 1e-12)
-    }
+    return {rtol: threedof.simulate_3dof(BASELINE_45, rtol=rtol) for rtol in (1e-8, 1e-10, 1e-12)}
 
 
 def test_apogee_and_range_converge_to_a_metre(baseline_flights):
@@ -110,19 +148,18 @@ def test_agrees_with_scipy_solve_ivp(baseline_flights):
 
 @pytest.mark.parametrize("latitude_deg, bearing_deg", [(0, 90), (45, 0), (-30, 270), (60, 123)])
 def test_no_cross_range_without_rotation_or_wind(latitude_deg, bearing_deg):
-    flight = threedof.simulate_3dof(
-        BASELINE, 65.0, latitude_deg=latitude_deg, bearing_deg=bearing_deg, output_step_s=5.0
-    )
+    launch = Launch(BASELINE, 2157.0, 65.0, latitude_deg=latitude_deg, bearing_deg=bearing_deg)
+    flight = threedof.simulate_3dof(launch, output_step_s=5.0)
     assert np.max(np.abs(flight.cross_range_m)) < 1e-6
     assert flight.attrs["range_m"] == pytest.approx(
-        threedof.simulate_3dof(BASELINE, 65.0).attrs["range_m"], rel=1e-8
+        threedof.simulate_3dof(Launch(BASELINE, 2157.0, 65.0)).attrs["range_m"], rel=1e-8
     )
 
 
 def test_winds_push_the_way_they_blow():
-    calm = threedof.simulate_3dof(BASELINE, 45.0, output_step_s=10.0).attrs
-    cross = threedof.simulate_3dof(BASELINE, 45.0, cross_wind_m_s=6.0, output_step_s=10.0).attrs
-    head = threedof.simulate_3dof(BASELINE, 45.0, head_wind_m_s=6.0, output_step_s=10.0).attrs
+    calm = threedof.simulate_3dof(BASELINE_45, output_step_s=10.0).attrs
+    cross = threedof.simulate_3dof(BASELINE_45.but(cross_wind_m_s=6.0), output_step_s=10.0).attrs
+    head = threedof.simulate_3dof(BASELINE_45.but(head_wind_m_s=6.0), output_step_s=10.0).attrs
     assert cross["cross_range_m"] > 1.0  # drifts to the right, downwind
     assert head["range_m"] < calm["range_m"]
 
@@ -130,38 +167,110 @@ def test_winds_push_the_way_they_blow():
 def test_batch_matches_single_launches():
     # Same scheme and tolerances; steps may differ by rounding, within rtol = 1e-10 (~1 cm).
     elevations = np.array([30.0, 45.0, 65.0, 85.0])
-    batch = threedof.simulate_3dof_batch(BASELINE, elevations, rtol=1e-10)
-    for elevation, row in zip(elevations, batch.itertuples()):
-        single = threedof.simulate_3dof(BASELINE, elevation, rtol=1e-10).attrs
+    launches = [BASELINE_45.but(elevation_deg=elevation) for elevation in elevations]
+    batch = threedof.simulate_3dof_batch(launches, rtol=1e-10)
+    assert batch.elevation_deg.tolist() == elevations.tolist()
+    assert batch.stop_reason.tolist() == ["impact"] * len(elevations)
+    for launch, row in zip(launches, batch.itertuples()):
+        single = threedof.simulate_3dof(launch, rtol=1e-10).attrs
         assert row.apogee_altitude_m == pytest.approx(single["apogee_altitude_m"], abs=0.05)
         assert row.range_m == pytest.approx(single["range_m"], abs=0.05)
 
 
-def test_table_has_the_shared_columns_and_physical_values():
-    flight = threedof.simulate_3dof(HP, 50.0)
-    from harp_analysis.trajectory import BASE_COLUMNS
+def test_batch_of_one_launch_is_accepted():
+    batch = threedof.simulate_3dof_batch(BASELINE_45, rtol=1e-10)
+    single = threedof.simulate_3dof(BASELINE_45, rtol=1e-10).attrs
+    assert len(batch) == 1
+    assert batch.range_m[0] == pytest.approx(single["range_m"], abs=0.05)
 
-    assert tuple(flight.columns) == BASE_COLUMNS
+
+@pytest.mark.parametrize(
+    "changes, name",
+    [
+        ({"projectile": HP}, "projectile"),
+        (
+            {"projectile": dataclasses.replace(BASELINE, drag_law=get_drag_law("m829"))},
+            "projectile",
+        ),
+        ({"atmosphere": "vacuum"}, "atmosphere"),
+        ({"rotation_rate_rad_s": earth.ROTATION_RATE_RAD_S}, "rotation_rate_rad_s"),
+        ({"site_altitude_m": 1000.0}, "site_altitude_m"),
+    ],
+)
+def test_batch_refuses_launches_that_cannot_share_it(changes, name):
+    with pytest.raises(ValueError, match=rf"launches\[1\]\.{name}"):
+        threedof.simulate_3dof_batch([BASELINE_45, BASELINE_45.but(**changes)])
+
+
+def test_batch_refuses_an_empty_list_and_non_launches():
+    with pytest.raises(ValueError, match="at least one Launch"):
+        threedof.simulate_3dof_batch([])
+    with pytest.raises(TypeError, match=r"launches\[1\] must be a Launch"):
+        threedof.simulate_3dof_batch([BASELINE_45, 60.0])
+    for misuse in (BASELINE, "HP", 45.0):
+        with pytest.raises(TypeError, match="Launch"):
+            threedof.simulate_3dof_batch(misuse)
+
+
+def test_table_has_the_shared_columns_and_physical_values():
+    launch = Launch(HP, 2022.0, 50.0)
+    flight = threedof.simulate_3dof(launch)
+
+    assert tuple(flight.columns) == trajectory.BASE_COLUMNS
     assert flight.altitude_m.iloc[0] == 0.0 and abs(flight.altitude_m.iloc[-1]) < 1e-3
     assert flight.mach.iloc[0] == pytest.approx(2022.0 / 340.1, rel=1e-3)
+    assert flight.mach.iloc[0] == pytest.approx(launch.launch_mach, rel=1e-12)
     assert flight.drag_coefficient.iloc[0] == pytest.approx(
         -np.interp(flight.mach.iloc[0], M829.mach, M829.cx0)
     )
+    assert flight.drag_coefficient.iloc[0] == pytest.approx(launch.launch_drag_coefficient)
     # Drag only removes angular momentum: it never increases along the flight.
     assert np.all(np.diff(flight.specific_angular_momentum_m2_s) <= 1e-6)
 
 
+def test_metadata_of_a_flight_that_lands(baseline_flights):
+    flight = baseline_flights[1e-8]
+    attrs = flight.attrs
+    assert set(trajectory.METADATA_KEYS) <= set(attrs)
+    assert attrs["engine"] == "3DOF" and attrs["launch"] == BASELINE_45
+    assert attrs["impact"] is True and attrs["stop_reason"] == "impact"
+    assert attrs["stop_reason"] in trajectory.STOP_REASONS
+    assert attrs["rhs_evaluations"] > attrs["steps"] > 0
+    assert attrs["time_of_flight_s"] == flight.time_s.iloc[-1]
+    assert attrs["range_m"] == flight.ground_range_m.iloc[-1]
+    assert attrs["cross_range_m"] == flight.cross_range_m.iloc[-1]
+    assert attrs["impact_speed_m_s"] == flight.speed_m_s.iloc[-1]
+    assert 0 < attrs["apogee_time_s"] < attrs["time_of_flight_s"]
+    # The apogee event lies between rows 0.5 s apart: above the highest row by < g (0.25 s)^2 / 2.
+    assert 0.0 <= attrs["apogee_altitude_m"] - flight.altitude_m.max() < 0.31
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", trajectory.TruncatedFlightWarning)
+        threedof.simulate_3dof(BASELINE_45, output_step_s=10.0)
+
+
 def test_escape_or_short_time_ends_cleanly():
-    with pytest.warns(ModelValidityWarning, match="did not return"):
-        short = threedof.simulate_3dof(BASELINE, 45.0, max_time_s=20.0)
+    assert issubclass(trajectory.TruncatedFlightWarning, ModelValidityWarning)
+    with pytest.warns(trajectory.TruncatedFlightWarning, match="did not return"):
+        short = threedof.simulate_3dof(BASELINE_45, max_time_s=20.0)
     assert not short.attrs["impact"] and short.time_s.iloc[-1] == pytest.approx(20.0)
-    with pytest.warns(ModelValidityWarning):
-        escape = threedof.simulate_3dof(BASELINE, 90.0, speed_m_s=15_000.0, max_time_s=500.0)
+    assert set(trajectory.METADATA_KEYS) <= set(short.attrs)
+    assert short.attrs["stop_reason"] == "max_time"
+    assert short.attrs["time_of_flight_s"] == pytest.approx(20.0)
+    with pytest.warns(trajectory.TruncatedFlightWarning):
+        escape = threedof.simulate_3dof(Launch(BASELINE, 15_000.0, 90.0), max_time_s=500.0)
     assert np.isnan(escape.attrs["apogee_time_s"])
+    assert escape.attrs["stop_reason"] == "max_time"
+    with pytest.warns(trajectory.TruncatedFlightWarning, match="1 of 2"):
+        batch = threedof.simulate_3dof_batch(
+            [BASELINE_45.but(elevation_deg=85.0), BASELINE_45.but(elevation_deg=5.0)],
+            max_time_s=60.0,
+        )
+    assert batch.stop_reason.tolist() == ["max_time", "impact"]
+    assert batch.impact.tolist() == [False, True]
 
 
 @pytest.mark.parametrize(
-    "kwargs, name",
+    "changes, name",
     [
         ({"elevation_deg": 0.0}, "elevation_deg"),
         ({"elevation_deg": 91.0}, "elevation_deg"),
@@ -170,24 +279,51 @@ def test_escape_or_short_time_ends_cleanly():
         ({"latitude_deg": 95.0}, "latitude_deg"),
         ({"bearing_deg": 360.0}, "bearing_deg"),
         ({"atmosphere": "martian"}, "atmosphere"),
-        ({"drag_law": "brick"}, "drag_law"),
-        ({"rtol": 0.0}, "rtol"),
-        ({"output_step_s": 0.0}, "output_step_s"),
         ({"head_wind_m_s": np.inf}, "head_wind_m_s"),
     ],
 )
-def test_bad_input_is_named(kwargs, name):
-    arguments = {"elevation_deg": 45.0} | kwargs
+def test_bad_launch_is_named(changes, name):
+    arguments = {"projectile": BASELINE, "speed_m_s": 2157.0, "elevation_deg": 45.0} | changes
     with pytest.raises((ValueError, TypeError), match=name):
-        threedof.simulate_3dof(BASELINE, **arguments)
+        Launch(**arguments)
+    with pytest.raises((ValueError, TypeError), match=name):
+        BASELINE_45.but(**changes)  # validated again
+
+
+def test_bad_drag_law_override_is_named():
+    # A drag-law override is a projectile override; a name is not a drag law.
+    with pytest.raises(TypeError, match="drag_law"):
+        Launch(dataclasses.replace(BASELINE, drag_law="brick"), 2157.0, 45.0)
+
+
+@pytest.mark.parametrize(
+    "options, name",
+    [
+        ({"rtol": 0.0}, "rtol"),
+        ({"output_step_s": 0.0}, "output_step_s"),
+        ({"max_time_s": -1.0}, "max_time_s"),
+        ({"rtol": np.nan}, "rtol"),
+    ],
+)
+def test_bad_numerical_option_is_named(options, name):
+    with pytest.raises((ValueError, TypeError), match=name):
+        threedof.simulate_3dof(BASELINE_45, **options)
 
 
 def test_bad_projectile_is_named():
     with pytest.raises(ValueError, match="projectile 'bullet'"):
         get_projectile("bullet")
     with pytest.raises(TypeError, match="projectile"):
+        Launch("HP", 2022.0, 45.0)
+    # The pre-Launch calls are refused, naming what is wanted.
+    for misuse in ("HP", BASELINE, [BASELINE_45], None):
+        with pytest.raises(TypeError, match="launch must be a Launch"):
+            threedof.simulate_3dof(misuse)
+    with pytest.raises(TypeError, match="positional argument"):
         threedof.simulate_3dof("HP", 45.0)
-    from harp_analysis.projectiles import Projectile
+    for old in ("elevation_deg", "speed_m_s", "atmosphere", "cross_wind_m_s", "drag_law"):
+        with pytest.raises(TypeError, match=old):
+            threedof.simulate_3dof(BASELINE_45, **{old: 1.0})
 
     for name in ("mass_kg", "reference_area_m2", "launch_speed_m_s"):
         values = dict(
@@ -200,6 +336,60 @@ def test_bad_projectile_is_named():
         ) | {name: 0.0}
         with pytest.raises(ValueError, match=name):
             Projectile(**values)
+
+
+# --- Launch construction, fuzzed ----------------------------------------------------------------
+#: The documented bounds of each numeric Launch field: (low, high, low closed, high closed).
+LAUNCH_BOUNDS = {
+    "speed_m_s": (0.0, math.inf, False, True),
+    "elevation_deg": (0.0, 90.0, False, True),
+    "bearing_deg": (0.0, 360.0, True, False),
+    "latitude_deg": (-90.0, 90.0, True, True),
+    "longitude_deg": (-180.0, 360.0, True, True),
+    "site_altitude_m": (-500.0, 10_000.0, True, True),
+    "cross_wind_m_s": (-100.0, 100.0, True, True),
+    "head_wind_m_s": (-100.0, 100.0, True, True),
+    "spin_rad_s": (-math.inf, math.inf, True, True),
+    "rotation_rate_rad_s": (-1e-3, 1e-3, True, True),
+}
+
+_FUZZ_VALUES = st.one_of(
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.floats(min_value=-400.0, max_value=400.0),
+    st.floats(min_value=-2e-3, max_value=2e-3),
+    st.integers(),
+    st.floats(allow_nan=True, allow_infinity=True).map(np.float64),
+    st.text(max_size=5),
+    st.none(),
+    st.booleans(),
+)
+
+
+@settings(max_examples=200, deadline=None)
+@given(name=st.sampled_from(sorted(LAUNCH_BOUNDS)), value=_FUZZ_VALUES)
+@example(name="speed_m_s", value=2**1000)
+@example(name="elevation_deg", value="50")
+@example(name="bearing_deg", value=360.0)
+@example(name="rotation_rate_rad_s", value=True)
+def test_launch_fields_are_finite_and_in_bounds_or_named(name, value):
+    arguments = {"projectile": BASELINE, "speed_m_s": 2157.0, "elevation_deg": 45.0}
+    try:
+        launch = Launch(**(arguments | {name: value}))
+    except (TypeError, ValueError) as error:
+        assert name in str(error)
+        return
+    low, high, low_closed, high_closed = LAUNCH_BOUNDS[name]
+    field = getattr(launch, name)
+    assert type(field) is float and math.isfinite(field)
+    assert field == float(value) and not isinstance(value, bool | str)
+    assert (low <= field) if low_closed else (low < field)
+    assert (field <= high) if high_closed else (field < high)
+
+
+@pytest.mark.parametrize("value", [10**400, -(10**400)], ids=["+1e400", "-1e400"])
+def test_launch_field_beyond_the_float_range_is_named(value):
+    with pytest.raises(ValueError, match="spin_rad_s"):
+        Launch(BASELINE, 2157.0, 45.0, spin_rad_s=value)
 
 
 # --- drag laws --------------------------------------------------------------------------------

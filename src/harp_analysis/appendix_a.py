@@ -26,62 +26,48 @@ import pandas as pd
 
 from . import earth
 from .atmosphere import get_atmosphere
-from .drag import BASELINE_CONE
-from .projectiles import Projectile
+from .launch import Launch
+from .trajectory import describe, surface_ranges
 from .validation import check_range, finite_scalar
 
 __all__ = ["simulate_appendix_a"]
 
 
-def simulate_appendix_a(
-    projectile: Projectile,
-    elevation_deg: float,
-    dt_s: float,
-    *,
-    speed_m_s: float | None = None,
-    latitude_deg: float = 0.0,
-    longitude_deg: float = 0.0,
-    azimuth_deg: float = 90.0,
-    earth_spin_rad_s: float = 0.0,
-    max_time_s: float = 3000.0,
-) -> pd.DataFrame:
-    """Run Appendix A's macro; returns the rows it would write (every 0.5 s of its clock).
+def simulate_appendix_a(launch: Launch, dt_s: float, *, max_time_s: float = 3000.0) -> pd.DataFrame:
+    """Run Appendix A's macro on ``launch`` with its fixed step ``dt_s``; returns the rows it
+    would write (every 0.5 s of its clock) with the shared metadata
+    (:func:`harp_analysis.trajectory.describe`).
 
+    The physics are the launch's (its projectile's drag law and its atmosphere; the listing
+    hard-codes eq 4.8 and the three-layer air, ``atmosphere="three_layer"``), the numerics the
+    macro's. The macro has no wind (a launch's wind is ignored, with a warning) and starts at
+    sea level; its Earth rotation is ``launch.rotation_rate_rad_s`` with the printed terms.
     Columns: ``time_s`` (the macro's clock), ``altitude_m``, ``ground_range_m`` (R times the
-    angle from the launch point), ``speed_m_s`` (backward-difference speed),
-    ``radius_m`` and ``specific_angular_momentum_m2_s`` as the macro computes them.
+    angle from the launch point), ``cross_range_m`` (right of the launch plane), ``speed_m_s``
+    (backward-difference speed), ``radius_m`` and ``specific_angular_momentum_m2_s`` as the
+    macro computes them.
     """
-    elevation = check_range(
-        finite_scalar(elevation_deg, "elevation_deg"),
-        "elevation_deg",
-        low=0.0,
-        low_inclusive=False,
-        high=90.0,
-        unit="deg",
+    if not isinstance(launch, Launch):
+        raise TypeError(f"launch must be a Launch; got {type(launch).__name__}")
+    launch.require_zero("Appendix A macro", "site_altitude_m", reason="it launches at sea level")
+    launch.warn_ignored(
+        "Appendix A macro", "cross_wind_m_s", "head_wind_m_s", reason="the macro has no wind"
     )
     dt = check_range(
         finite_scalar(dt_s, "dt_s"), "dt_s", low=0.0, low_inclusive=False, high=1.0, unit="s"
     )
-    speed = check_range(
-        finite_scalar(projectile.launch_speed_m_s if speed_m_s is None else speed_m_s, "speed_m_s"),
-        "speed_m_s",
+    max_time_s = check_range(
+        finite_scalar(max_time_s, "max_time_s"),
+        "max_time_s",
         low=0.0,
         low_inclusive=False,
-        unit="m/s",
+        unit="s",
     )
-    lat = math.radians(
-        check_range(
-            finite_scalar(latitude_deg, "latitude_deg"),
-            "latitude_deg",
-            low=-90.0,
-            high=90.0,
-            unit="deg",
-        )
-    )
-    lon = math.radians(finite_scalar(longitude_deg, "longitude_deg"))
-    az, el = math.radians(finite_scalar(azimuth_deg, "azimuth_deg")), math.radians(elevation)
-    spin = finite_scalar(earth_spin_rad_s, "earth_spin_rad_s")
-    air = get_atmosphere("three_layer")
+    projectile, speed = launch.projectile, launch.speed_m_s
+    lat, lon = launch.latitude_rad, math.radians(launch.longitude_deg)
+    az, el = launch.bearing_rad, launch.elevation_rad
+    spin = launch.rotation_rate_rad_s
+    air, law = get_atmosphere(launch.atmosphere), projectile.drag_law
     R, GM, area, mass = (
         earth.RADIUS_M,
         earth.GM_M3_S2,
@@ -96,16 +82,18 @@ def simulate_appendix_a(
     v_north = speed * math.cos(el) * math.cos(az)
     x0 = np.multiply(R, up)
     v0 = v_up * np.array(up) + v_east * np.array(east) + v_north * np.array(north)
-    launch, x1 = x0.copy(), x0 + v0 * dt
+    origin, x1 = x0.copy(), x0 + v0 * dt
+    downrange = math.sin(az) * np.array(east) + math.cos(az) * np.array(north)
 
-    rows, clock, row = [], 3 * dt, 0
+    rows, clock, row, steps, impact = [], 3 * dt, 0, 0, False
     while clock < max_time_s:
+        steps += 1
         r1 = math.sqrt(x1 @ x1)
         altitude = r1 - R
         velocity = (x1 - x0) / dt + spin * np.array([-x1[1], x1[0], 0.0])  # sign as printed
         v = math.sqrt(velocity @ velocity)
         temperature_speed = float(air.sound_kernel(altitude))
-        cd = float(BASELINE_CONE.evaluate(v / temperature_speed)) if temperature_speed > 0 else 0.0
+        cd = float(law.evaluate(v / temperature_speed)) if temperature_speed > 0 else 0.0
         drag = 0.5 * float(air.density_kernel(altitude)) * cd * area * v * velocity
         x2 = 2 * x1 - x0 - GM * x1 / r1**3 * dt**2 - drag / mass * dt**2
         r2 = math.sqrt(x2 @ x2)
@@ -115,18 +103,20 @@ def simulate_appendix_a(
                 (
                     clock,
                     r2 - R,
-                    R * math.acos(min(1.0, x2 @ launch / (r2 * R))),
+                    R * math.acos(min(1.0, x2 @ origin / (r2 * R))),
                     v,
                     r1,
                     r2**2 * step_angle / dt,
+                    float(surface_ranges(x2, up, downrange)[1]),
                 )
             )
             row += 1
         x0, x1 = x1, x2
         clock = round(clock + dt, 4)
         if r2 <= R:
+            impact = True
             break
-    return pd.DataFrame(
+    frame = pd.DataFrame(
         rows,
         columns=[
             "time_s",
@@ -135,5 +125,18 @@ def simulate_appendix_a(
             "speed_m_s",
             "radius_m",
             "specific_angular_momentum_m2_s",
+            "cross_range_m",
         ],
+    )
+    top = frame.loc[frame.altitude_m.idxmax()]
+    return describe(
+        frame,
+        engine="Appendix A macro",
+        launch=launch,
+        apogee=(top.time_s, top.altitude_m, top.ground_range_m),
+        impact=impact,
+        rhs_evaluations=steps,
+        steps=steps,
+        max_time_s=max_time_s,
+        dt_s=dt,
     )

@@ -25,7 +25,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 
@@ -201,8 +201,8 @@ class AtmosphereModel:
     """
 
     name: str
-    density_kernel: Callable[[np.ndarray], np.ndarray]
-    sound_kernel: Callable[[np.ndarray], np.ndarray]
+    density_kernel: Callable[[Any], Any]  # float or array in, the same out
+    sound_kernel: Callable[[Any], Any]
     source: str
     ceiling_m: float | None = None
     sound_ceiling_m: float | None = None

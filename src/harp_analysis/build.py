@@ -1,8 +1,9 @@
 """``make figures``: execute every notebook headless, then render the gallery and the ledger.
 
 Notebooks run in memory from their own folder (as nbmake runs them) and are never rewritten,
-so the committed notebooks stay free of outputs. Figures land in ``figures/`` (or in
-``HARP_ANALYSIS_FIGURES_DIR``) through :func:`harp_analysis.plotting.save_figure`.
+so the committed notebooks stay free of outputs. Figures land in ``HARP_ANALYSIS_FIGURES_DIR``
+(``make figures`` sets it to the committed ``figures/``) through
+:func:`harp_analysis.plotting.save_figure`, and so do the gallery and the evaluated ledger.
 """
 
 from __future__ import annotations
@@ -56,9 +57,9 @@ def main(argv: list[str] | None = None) -> int:
     with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
         timings = dict(zip(notebooks(), pool.map(execute_notebook, notebooks())))
     for path, seconds in timings.items():
-        print(f"{seconds:6.1f} s  {path.relative_to(paths.ROOT)}")
+        print(f"{seconds:6.1f} s  {path.name}")
     for written in (render_gallery(), render_claims()):
-        print(f"wrote {written.relative_to(paths.ROOT)}")
+        print(f"wrote {written}")
     return 0
 
 

@@ -9,20 +9,24 @@ Cases are cached, so the notebook and the claims ledger share one run of each.
 from __future__ import annotations
 
 import warnings
-from functools import cache
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from . import earth, mks, nonlinear_kepler
+from .caching import cached_copies
+from .launch import Launch, baseline_chapter_4, chapter_2
 from .mks_error import position_errors
-from .projectiles import get_projectile
+from .projectiles import BASELINE, get_projectile
 from .threedof import simulate_3dof
 from .validation import ModelValidityWarning
 
 __all__ = [
     "BASELINE_ELEVATIONS_DEG",
     "VARIANTS",
+    "chapter_4_launch",
+    "fly",
     "case",
     "error_at_apogee_km",
     "error_ratio",
@@ -43,38 +47,29 @@ __all__ = [
 BASELINE_ELEVATIONS_DEG = (30.0, 45.0, 65.0, 85.0)
 
 
-@cache
-def case(
-    projectile: str = "baseline",
-    elevation_deg: float = 45.0,
-    *,
-    n_terms: int = 3,
-    speed_m_s: float | None = None,
-    atmosphere: str = "two_segment",
-    head_wind_m_s: float = 0.0,
-    cross_wind_m_s: float = 0.0,
-    momentum_from_apogee: bool = False,
-):
-    """(3DOF table, MKS, error table) of one launch.
+def chapter_4_launch(projectile: str, elevation_deg: float) -> Launch:
+    """The launch Chapter 4 flies: HP and LP as in Chapter 2 A (5 m/s cross wind included),
+    the baseline cone as Chapter 4 B describes it (no wind), at ``elevation_deg``."""
+    p = get_projectile(projectile)
+    if p == BASELINE:
+        return baseline_chapter_4(elevation_deg)
+    return chapter_2(p, elevation_deg=elevation_deg)
 
-    ``atmosphere="exponential"`` flies the 3DOF through eq 3.11's density (Fig 4.15);
+
+@cached_copies
+def fly(launch: Launch, *, n_terms: int = 3, momentum_from_apogee: bool = False):
+    """(3DOF table, MKS, error table) of ``launch``: the 3DOF flies it whole, the MKS (which
+    has no wind) its drag-only part.
+
     ``momentum_from_apogee`` replaces the MKS's asymptotic angular momentum with the 3DOF's at
     apogee, L_inf = L_apogee (eq 4.9, Fig 4.13), by choosing the decay so that
     h0 exp(-beta s) = h_apogee while the driving function keeps its beta.
     """
-    p = get_projectile(projectile)
-    flight = simulate_3dof(
-        p,
-        elevation_deg,
-        speed_m_s=speed_m_s,
-        atmosphere=atmosphere,
-        head_wind_m_s=head_wind_m_s,
-        cross_wind_m_s=cross_wind_m_s,
-        output_step_s=0.25,
-    )
+    flight = simulate_3dof(launch, output_step_s=0.25)
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ModelValidityWarning)  # HP and LP exceed beta = 0.25
-        solution = mks.for_projectile(p, elevation_deg, speed_m_s=speed_m_s, n_terms=n_terms)
+        # HP and LP exceed beta = 0.25; the MKS leaves the wind out
+        warnings.simplefilter("ignore", ModelValidityWarning)
+        solution = mks.for_launch(launch, n_terms=n_terms)
         if momentum_from_apogee:
             h_apogee = np.interp(
                 flight.attrs["apogee_time_s"], flight.time_s, flight.specific_angular_momentum_m2_s
@@ -91,6 +86,21 @@ def case(
     return flight, solution, position_errors(flight, solution)
 
 
+def case(
+    projectile: str = "baseline",
+    elevation_deg: float = 45.0,
+    *,
+    n_terms: int = 3,
+    momentum_from_apogee: bool = False,
+    **launch_changes,
+):
+    """:func:`fly` of Chapter 4's launch of ``projectile`` at ``elevation_deg`` with
+    ``launch_changes`` (fields of :class:`~harp_analysis.launch.Launch`, e.g. the variants'
+    ``atmosphere="exponential"``, Fig 4.15)."""
+    launch = chapter_4_launch(projectile, elevation_deg).but(**launch_changes)
+    return fly(launch, n_terms=n_terms, momentum_from_apogee=momentum_from_apogee)
+
+
 def _at_apogee(errors: pd.DataFrame, flight: pd.DataFrame, column: str) -> float:
     return float(np.interp(flight.attrs["apogee_time_s"], errors.time_s, errors[column]))
 
@@ -105,7 +115,7 @@ def error_at_apogee_km(
 
 
 #: The variants of Chapter 4 C (Figs 4.13, 4.15, 4.17, 4.18) as arguments of :func:`case`.
-VARIANTS = {
+VARIANTS: dict[str, dict[str, Any]] = {
     "exponential_density": dict(atmosphere="exponential"),
     "momentum_from_apogee": dict(momentum_from_apogee=True),
     "speed_plus_20pct": dict(speed_m_s=2590.0),

@@ -14,12 +14,14 @@ the M829 table (Mach 0 to 8) anyway.
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
+from typing import Protocol
 
 import numpy as np
 
 from .validation import check_choice, check_range, finite_array
 
 __all__ = [
+    "DragLaw",
     "ExponentialDragLaw",
     "TabulatedDragLaw",
     "AeroTables",
@@ -28,6 +30,15 @@ __all__ = [
     "get_drag_law",
     "DRAG_LAW_NAMES",
 ]
+
+
+class DragLaw(Protocol):
+    """What a projectile's drag law offers: ``law(mach)``, checked, and ``law.evaluate(mach)``,
+    unchecked, for the integration loops."""
+
+    def __call__(self, mach) -> np.ndarray: ...
+
+    def evaluate(self, mach): ...
 
 
 def _mach(mach) -> np.ndarray:

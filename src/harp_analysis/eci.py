@@ -12,7 +12,7 @@ misalignment angle mu from V (Ch. 5 B), so only cos(mu) of it decays the angular
 enter :class:`mks.ModifiedKeplerSolution` as ``drive_scale`` = cos(mu) (Vrel/V)^2 (eqs 6.9-6.10)
 and ``decay_scale`` = cos(mu) (eq 6.14).
 
-Vectors are (3, ...) arrays in the inertial frame of :func:`threedof.launch_frame` at longitude 0
+Vectors are (3, ...) arrays in the inertial frame of :func:`trajectory.launch_frame` at longitude 0
 (z along the Earth's axis); angles in rad, speeds in m/s, SI throughout.
 
 Sign of V_tangent (the text leaves it open: "in the plane created by the relative velocity and
@@ -44,8 +44,9 @@ import numpy as np
 
 from . import earth, mks
 from .atmosphere import TEXT_DECAY_CONSTANT_PER_M
+from .launch import Launch
 from .sites import get_site
-from .threedof import launch_frame
+from .trajectory import launch_frame
 from .validation import check_choice, check_range, finite_array
 
 __all__ = [
@@ -68,6 +69,8 @@ __all__ = [
     "launch_correction",
     "eci_solution",
     "solution_for",
+    "correction_for_launch",
+    "solution_for_launch",
     "site_surface_speed_km_s",
     "inertial_positions",
 ]
@@ -458,6 +461,38 @@ def eci_solution(
     )
 
 
+def correction_for_launch(launch: Launch, model: str | EciModel = CONSISTENT) -> LaunchCorrection:
+    """:func:`launch_correction` of a :class:`~harp_analysis.launch.Launch`: its speed,
+    elevation, bearing and latitude, Cd0 A at the launch Mach, its mass, its air's density at
+    the gun and its Earth rotation. The ECI MKS is drag-only: a wind is ignored with a
+    warning; it launches from the Earth's surface (r0 = R)."""
+    if not isinstance(launch, Launch):
+        raise TypeError(f"launch must be a Launch; got {type(launch).__name__}")
+    launch.require_zero("ECI MKS", "site_altitude_m", reason="it launches from r0 = R")
+    launch.warn_ignored(
+        "ECI MKS", "cross_wind_m_s", "head_wind_m_s", reason="the MKS has no wind (Chapter 3)"
+    )
+    projectile = launch.projectile
+    return launch_correction(
+        launch.speed_m_s,
+        launch.elevation_rad,
+        launch.bearing_rad,
+        launch.latitude_rad,
+        drag_area_m2=launch.launch_drag_coefficient * projectile.reference_area_m2,
+        mass_kg=projectile.mass_kg,
+        surface_density_kg_m3=mks.gun_density_kg_m3(launch),
+        rotation_rate_rad_s=launch.rotation_rate_rad_s,
+        model=model,
+    )
+
+
+def solution_for_launch(
+    launch: Launch, model: str | EciModel = CONSISTENT, *, n_terms: int = 3, warn: bool = True
+) -> mks.ModifiedKeplerSolution:
+    """The ECI MKS of a :class:`~harp_analysis.launch.Launch` (:func:`correction_for_launch`)."""
+    return solution_for(correction_for_launch(launch, model), n_terms=n_terms, warn=warn)
+
+
 def solution_for(
     launch: LaunchCorrection, *, n_terms: int = 3, radius_m=earth.RADIUS_M, warn: bool = True
 ) -> mks.ModifiedKeplerSolution:
@@ -485,7 +520,7 @@ def inertial_positions(
 ) -> np.ndarray:
     """Positions (n, 3) of a single-launch ECI MKS at angular ranges ``theta_rad``: r(theta)
     in the plane of the launch point's radius and the corrected velocity's horizontal part,
-    in the inertial frame of :func:`threedof.launch_frame` at longitude 0 and time zero."""
+    in the inertial frame of :func:`trajectory.launch_frame` at longitude 0 and time zero."""
     up = np.ravel(launch_frame(latitude_rad, 0.0, 0.0)[0])
     velocity = np.ravel(launch.velocity_m_s)
     along = velocity - (velocity @ up) * up

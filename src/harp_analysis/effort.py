@@ -83,11 +83,13 @@ import textwrap
 import time
 from collections import Counter
 from functools import cache
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
-from . import atmosphere, drag, earth, mlt, threedof
+from . import atmosphere, drag, earth, mks, mlt, threedof
+from .caching import cached_copies
 from .sixdof import RigidBodyModel, simulate_6dof
 
 __all__ = [
@@ -228,7 +230,8 @@ class _Counter(ast.NodeVisitor):
             and not iterable.keywords
             and all(isinstance(a, ast.Constant) for a in iterable.args)
         ):
-            return len(range(*(a.value for a in iterable.args)))
+            bounds = [int(a.value) for a in iterable.args if isinstance(a, ast.Constant)]  # type: ignore[arg-type]
+            return len(range(*bounds))
         if (
             isinstance(iterable, ast.Name)
             and iterable.id not in self.local_names
@@ -413,7 +416,7 @@ def _segment_loop(tree) -> tuple:
 _MLT_DIAGNOSTICS = ("_check_validity", "_validity_problem")
 
 
-def _mlt_run(projectile, **flight) -> tuple[Counter, pd.DataFrame]:
+def _mlt_run(launch, **flight) -> tuple[Counter, pd.DataFrame]:
     """One MLT flight and the calls of every Python function that its segment loop made (by
     code object; a profile hook), leaving out the diagnostics and what runs after the loop
     (the output rows)."""
@@ -421,7 +424,7 @@ def _mlt_run(projectile, **flight) -> tuple[Counter, pd.DataFrame]:
     loop_test, loop_body = _segment_loop(_function_tree(mlt.simulate_mlt))
     first = simulate.co_firstlineno + loop_test.lineno - 1
     last = simulate.co_firstlineno + loop_body[-1].end_lineno - 1
-    calls = Counter()
+    calls: Counter = Counter()
 
     def hook(frame, event, arg):
         if event != "call":
@@ -437,31 +440,31 @@ def _mlt_run(projectile, **flight) -> tuple[Counter, pd.DataFrame]:
     previous = sys.getprofile()
     sys.setprofile(hook)
     try:
-        table = mlt.simulate_mlt(projectile, **flight)
+        table = mlt.simulate_mlt(launch, **flight)
     finally:
         sys.setprofile(previous)
     return calls, table
 
 
-def _mlt_count(projectile, **flight) -> tuple[int, pd.DataFrame]:
-    calls, table = _mlt_run(projectile, **flight)
-    if table.attrs["atmosphere"] != "two_segment":
+def _mlt_count(launch, **flight) -> tuple[int, pd.DataFrame]:
+    calls, table = _mlt_run(launch, **flight)
+    if launch.atmosphere != "two_segment":
         raise ValueError(
             "MLT's operations are counted in the two-segment atmosphere only "
             "(its density and speed of sound are the counted kernels)"
         )
     loop = _count(mlt.simulate_mlt, part=_segment_loop)
     flops = sum(calls[code] * cost for code, cost in _mlt_costs().items())
-    return flops + table.attrs["n_segments"] * loop, table
+    return flops + table.attrs["steps"] * loop, table
 
 
-def mlt_flops(projectile, **flight) -> int:
-    """Operations of one MLT flight of ``projectile`` (keyword arguments of
+def mlt_flops(launch, **flight) -> int:
+    """Operations of one MLT flight of ``launch`` (keyword arguments of
     :func:`harp_analysis.mlt.simulate_mlt`, in the two-segment atmosphere) to impact, by the
     module's rule: every call its segment loop makes times the called function's own count,
     plus the loop's own operations per segment; the output rows and the validity diagnostics
     are not counted."""
-    return _mlt_count(projectile, **flight)[0]
+    return _mlt_count(launch, **flight)[0]
 
 
 def best_time(function, repeat: int = 5, number: int = 1) -> float:
@@ -475,63 +478,61 @@ def best_time(function, repeat: int = 5, number: int = 1) -> float:
     return best
 
 
-@cache
+@cached_copies
 def effort_table(elevation_deg: float = 50.0) -> pd.DataFrame:
     """FLOPs and wall time per apogee of HP at ``elevation_deg``, and each apogee's difference
     from the 6DOF's: 6DOF, 3DOF, MKS (three terms, straight-line code; and vectorised over a
     million launches) and Modified Linear Theory (1 km segments, coefficients at each
     segment's middle, the 6DOF's spherical density altitude). The simulations fly to impact,
     as the figure's methods do; the MKS evaluates the apogee alone."""
-    from .projectiles import HP
-    from .scenarios import REFERENCE_CROSSWIND_M_S
+    from .launch import HP_CHAPTER_2
 
-    six_flight = dict(
-        elevation_deg=elevation_deg,
-        crosswind_m_s=REFERENCE_CROSSWIND_M_S,
-        density_altitude="spherical",
-    )
-    three_flight = dict(elevation_deg=elevation_deg, cross_wind_m_s=REFERENCE_CROSSWIND_M_S)
-    six = simulate_6dof(HP, **six_flight)
-    three = threedof.simulate_3dof(HP, **three_flight)
+    launch = HP_CHAPTER_2.but(elevation_deg=elevation_deg)
+    six = simulate_6dof(launch, density_altitude="spherical")
+    three = threedof.simulate_3dof(launch)
     six_rhs = count_flops(*_sixdof_functions(), trips=_COEFFICIENTS)
     # scipy's DOP853 with dense output: 2 evaluations to start, 12 per step attempt and 3 more
     # per accepted step for the interpolant its events are found on.
-    six_attempts = (six.attrs["n_rhs"] - 2 - 3 * six.attrs["n_steps"]) / 12
-    six_flops = six.attrs["n_rhs"] * six_rhs + six_attempts * dop853_step_flops(12)
+    six_attempts = (six.attrs["rhs_evaluations"] - 2 - 3 * six.attrs["steps"]) / 12
+    six_flops = six.attrs["rhs_evaluations"] * six_rhs + six_attempts * dop853_step_flops(12)
     three_flops = three.attrs["rhs_evaluations"] * count_flops(
         *_threedof_functions()
     ) + three.attrs["rhs_evaluations"] / 12 * dop853_step_flops(6)
-    mlt_flight = dict(
-        elevation_deg=elevation_deg,
-        crosswind_m_s=REFERENCE_CROSSWIND_M_S,
+    mlt_flight: dict[str, Any] = dict(
         density_altitude="spherical",
         segment_length_m=mlt.SEGMENT_LENGTH_M,
         coefficients_at="middle",
     )
-    linear_flops, linear = _mlt_count(HP, **mlt_flight)
-    elevation = math.radians(elevation_deg)
-    sound = float(atmosphere.get_atmosphere("two_segment").speed_of_sound(0.0))
-    cd0 = float(HP.drag_law(HP.launch_speed_m_s / sound))
-    inputs = (HP.launch_speed_m_s, elevation, cd0, HP.mass_kg, HP.reference_area_m2)
-    many = np.full(1_000_000, elevation)
+    linear_flops, linear = _mlt_count(launch, **mlt_flight)
+    projectile = launch.projectile
+    inputs = (
+        launch.speed_m_s,
+        launch.elevation_rad,
+        launch.launch_drag_coefficient,
+        projectile.mass_kg,
+        projectile.reference_area_m2,
+        atmosphere.TEXT_DECAY_CONSTANT_PER_M,
+        mks.gun_density_kg_m3(launch),  # rho0 of eq 3.11, as mks.for_launch takes it
+    )
+    many = np.full(1_000_000, launch.elevation_rad)
     lookup = 14  # Cd0 from the M829 table: one lookup and the linear interpolation
     rows = [
         (
             "6DOF",
             six_flops,
-            best_time(lambda: simulate_6dof(HP, **six_flight), repeat=2),
+            best_time(lambda: simulate_6dof(launch, density_altitude="spherical"), repeat=2),
             six.attrs["apogee_altitude_m"],
         ),
         (
             "3DOF",
             three_flops,
-            best_time(lambda: threedof.simulate_3dof(HP, **three_flight)),
+            best_time(lambda: threedof.simulate_3dof(launch)),
             three.attrs["apogee_altitude_m"],
         ),
         (
             "MLT",
             linear_flops,
-            best_time(lambda: mlt.simulate_mlt(HP, **mlt_flight)),
+            best_time(lambda: mlt.simulate_mlt(launch, **mlt_flight)),
             linear.attrs["apogee_altitude_m"],
         ),
         (

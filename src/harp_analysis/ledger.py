@@ -82,7 +82,7 @@ class ClaimResult:
         the tolerance is relative."""
         difference = self.computed - self.claim.text_value
         difference = {"upper": max(difference, 0.0), "lower": max(-difference, 0.0)}.get(
-            self.claim.bound, abs(difference)
+            self.claim.bound or "", abs(difference)
         )
         if self.claim.tolerance_kind == "relative":
             return difference / abs(self.claim.text_value)
@@ -193,7 +193,7 @@ def render_claims(target: Path | None = None) -> Path:
         tolerance = (
             f"{c.tolerance:g}" if c.tolerance_kind == "absolute" else f"{c.tolerance:.2%} rel."
         )
-        text = {"upper": "< ", "lower": "> "}.get(c.bound, "") + _number(c.text_value)
+        text = {"upper": "< ", "lower": "> "}.get(c.bound or "", "") + _number(c.text_value)
         lines.append(
             f"| `{c.id}` | {c.source} | {c.statement} | {text} | "
             f"{_number(r.computed)} | {c.unit} | {tolerance} | **{c.verdict}** | "

@@ -101,9 +101,9 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from . import earth, kepler
-from .atmosphere import AtmosphereModel, get_atmosphere
-from .projectiles import Projectile, check_rigid_body
-from .sixdof import DENSITY_ALTITUDES, RigidBodyModel, rigid_body_model, trajectory_table
+from .launch import Launch
+from .sixdof import DENSITY_ALTITUDES, RigidBodyModel, rigid_body_launch, trajectory_table
+from .trajectory import describe
 from .validation import ModelValidityWarning, check_choice, check_range, finite_scalar
 
 __all__ = [
@@ -207,11 +207,12 @@ def segment_coefficients(
 
 
 def _average(a: SegmentCoefficients, b: SegmentCoefficients) -> SegmentCoefficients:
+    # (the fields are floats and tuples of floats, which mypy cannot follow through zip)
     return SegmentCoefficients(
         *(
-            tuple((i + j) / 2 for i, j in zip(x, y)) if isinstance(x, tuple) else (x + y) / 2
+            tuple((i + j) / 2 for i, j in zip(x, y)) if isinstance(x, tuple) else (x + y) / 2  # type: ignore[call-overload, operator]
             for x, y in zip(a, b)
-        )
+        )  # type: ignore[arg-type]
     )
 
 
@@ -233,7 +234,7 @@ def _phi(z: complex) -> tuple:
         phi1 = (e - 1.0) / z
         phi2 = (phi1 - 1.0) / z
         return e, phi1, phi2, (phi2 - 0.5) / z
-    phi3 = 0.0
+    phi3: complex = 0.0
     for coefficient in _PHI3_SERIES:
         phi3 = phi3 * z + coefficient
     phi2 = 0.5 + z * phi3
@@ -400,16 +401,12 @@ def _validity_problem(segment: _Segment, model) -> str | None:
             f"the angle of attack reaches {alpha:.1f} deg {where}; linear theory assumes "
             "small angles where the air acts"
         )
+    return None
 
 
 def simulate_mlt(
-    projectile: Projectile,
+    launch: Launch,
     *,
-    elevation_deg: float = 50.0,
-    speed_m_s: float = 2022.0,
-    spin_rad_s: float = 10.0,
-    crosswind_m_s: float = 5.0,
-    atmosphere="two_segment",
     density_altitude: str = "flat",
     segment_length_m: float = SEGMENT_LENGTH_M,
     coefficients_at: str = "middle",
@@ -420,31 +417,21 @@ def simulate_mlt(
 ) -> pd.DataFrame:
     """One MLT flight (module docstring, eqs L1-L8) from launch to impact, as the 6DOF's table.
 
-    The launch, wind, atmosphere and ``density_altitude`` arguments are those of
+    ``launch`` and ``density_altitude`` are flown as by
     :func:`harp_analysis.sixdof.simulate_6dof`. ``segment_length_m`` is the arc length between
     updates of the linear solution; ``coefficients_at`` where in a segment the coefficients are
     frozen (:data:`COEFFICIENT_POINTS`); ``gravity`` the central field of the 6DOF (frozen per
     segment) or ``"uniform"`` (GM/R^2 down the launch vertical); ``aerodynamics=False`` flies
     in vacuum. Rows every ``output_step_s`` and at impact (spherical altitude back to zero);
     Mach, drag coefficient, drag/gravity and angle of attack are evaluated from the states by
-    the 6DOF's aerodynamics, so the two tables mean the same thing. ``frame.attrs`` holds what
-    the 6DOF's does plus ``n_segments``.
+    the 6DOF's aerodynamics, so the two tables mean the same thing. ``frame.attrs`` holds the
+    shared metadata (``steps`` = segments, ``rhs_evaluations`` = coefficient evaluations, the
+    6DOF's right-hand side without its derivatives) and MLT's options.
     """
-    projectile = check_rigid_body(projectile, "MLT")
-    elevation = check_range(
-        finite_scalar(elevation_deg, "elevation_deg"),
-        "elevation_deg",
-        low=0.0,
-        low_inclusive=False,
-        high=90.0,
-        high_inclusive=False,
-        unit="deg",
-    )
-    speed = check_range(
-        finite_scalar(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0, low_inclusive=False, unit="m/s"
-    )
-    spin = finite_scalar(spin_rad_s, "spin_rad_s")
-    crosswind = finite_scalar(crosswind_m_s, "crosswind_m_s")
+    check_choice(density_altitude, "density_altitude", DENSITY_ALTITUDES)
+    model = rigid_body_launch(launch, "MLT", density_altitude)
+    projectile = launch.projectile
+    elevation, speed, spin = launch.elevation_deg, launch.speed_m_s, launch.spin_rad_s
     length_m = check_range(
         finite_scalar(segment_length_m, "segment_length_m"),
         "segment_length_m",
@@ -454,7 +441,6 @@ def simulate_mlt(
     )
     check_choice(coefficients_at, "coefficients_at", COEFFICIENT_POINTS)
     check_choice(gravity, "gravity", GRAVITY_MODELS)
-    check_choice(density_altitude, "density_altitude", DENSITY_ALTITUDES)
     max_time = check_range(
         finite_scalar(max_time_s, "max_time_s"),
         "max_time_s",
@@ -469,12 +455,11 @@ def simulate_mlt(
         low_inclusive=False,
         unit="s",
     )
-    air = atmosphere if isinstance(atmosphere, AtmosphereModel) else get_atmosphere(atmosphere)
-    model = rigid_body_model(projectile, air, (0.0, crosswind, 0.0), density_altitude)
     length = length_m / model.d
     uniform = gravity == "uniform"
     try:  # no flight, with or without drag, travels farther than a drag-free one at V0
-        longest_m = speed * kepler.ballistic_conic(speed, math.radians(elevation)).time_of_flight_s
+        conic = kepler.ballistic_conic(speed, math.radians(elevation))
+        longest_m = float(speed * conic.time_of_flight_s)
     except ValueError:  # escape speed: no bound
         longest_m = math.inf
     if length_m > longest_m:
@@ -492,7 +477,9 @@ def simulate_mlt(
         )
 
     state = (0.0, 0.0, 0.0, 0.0, math.radians(elevation), 0.0, speed, 0.0, 0.0, spin, 0.0, 0.0)
-    segments, time, impact, apogee, problem = [], 0.0, False, None, None
+    segments: list[_Segment] = []
+    time, impact, problem = 0.0, False, None
+    apogee: tuple | None = None
     while time < max_time:
         segment = _solve_segment(
             model, state, length, coefficients_at, aerodynamics, uniform
@@ -559,6 +546,7 @@ def simulate_mlt(
             f"a segment of {length_m:g} m (ends are checked for the impact): "
             "shorten segment_length_m"
         )
+    apogee_values = None
     if apogee is not None:
         top = trajectory_table(model, np.array([apogee[0]]), np.array(apogee[1])[:, None])
         apogee_values = (
@@ -566,30 +554,23 @@ def simulate_mlt(
             float(top.altitude_m.iloc[0]),
             float(top.ground_range_m.iloc[0]),
         )
-    else:
-        apogee_values = (math.nan,) * 3
-    last = frame.iloc[-1]
-    frame.attrs.update(
-        projectile=projectile.name,
-        elevation_deg=elevation,
-        speed_m_s=speed,
-        spin_rad_s=spin,
-        crosswind_m_s=crosswind,
-        atmosphere=air.name,
+    # each segment evaluates its coefficients at its start (eq L8's first pass), and again at
+    # its middle or its end unless they stay frozen at the start
+    per_segment = 1 if coefficients_at == "start" else 2
+    describe(
+        frame,
+        engine="MLT",
+        launch=launch,
+        apogee=apogee_values,
+        impact=impact,
+        rhs_evaluations=per_segment * len(segments),
+        steps=len(segments),
+        max_time_s=max_time,
         density_altitude=density_altitude,
         segment_length_m=length_m,
         coefficients_at=coefficients_at,
         gravity=gravity,
         aerodynamics=aerodynamics,
-        impact=impact,
-        time_of_flight_s=end_time,
-        range_m=float(last.ground_range_m),
-        cross_range_m=float(last.cross_range_m),
-        impact_speed_m_s=float(last.speed_m_s),
-        apogee_time_s=apogee_values[0],
-        apogee_altitude_m=apogee_values[1],
-        apogee_ground_range_m=apogee_values[2],
-        n_segments=len(segments),
     )
     return frame
 
@@ -636,63 +617,94 @@ def linear_theory_derivatives(
 
 
 def simulate_linear_theory_limit(
-    projectile: Projectile,
+    launch: Launch,
     *,
-    elevation_deg: float = 50.0,
-    speed_m_s: float = 2022.0,
-    spin_rad_s: float = 10.0,
-    crosswind_m_s: float = 5.0,
-    atmosphere="two_segment",
     density_altitude: str = "flat",
     frame_coupling: bool = False,
     rtol: float = 1e-10,
+    max_time_s: float = 400.0,
     output_step_s: float = 0.5,
 ) -> pd.DataFrame:
     """:func:`linear_theory_derivatives` integrated by DOP853 from launch to impact: the limit
-    MLT converges to, for measuring its segment error and the cost of the dropped products."""
-    projectile = check_rigid_body(projectile, "linear theory")
-    air = atmosphere if isinstance(atmosphere, AtmosphereModel) else get_atmosphere(atmosphere)
-    model = rigid_body_model(
-        projectile, air, (0.0, finite_scalar(crosswind_m_s, "crosswind_m_s"), 0.0), density_altitude
+    MLT converges to, for measuring its segment error and the cost of the dropped products.
+
+    ``launch`` and ``density_altitude`` are flown as by :func:`simulate_mlt`; rows every
+    ``output_step_s`` and at the end, the impact or ``max_time_s`` (a TruncatedFlightWarning);
+    ``frame.attrs`` the shared metadata, the apogee where the radial velocity changes sign (NaN
+    if the flight is cut off before it)."""
+    model = rigid_body_launch(launch, "linear-theory limit", density_altitude)
+    rtol = check_range(finite_scalar(rtol, "rtol"), "rtol", low=1e-13, high=1e-3)
+    max_time = check_range(
+        finite_scalar(max_time_s, "max_time_s"),
+        "max_time_s",
+        low=0.0,
+        low_inclusive=False,
+        unit="s",
+    )
+    step = check_range(
+        finite_scalar(output_step_s, "output_step_s"),
+        "output_step_s",
+        low=0.0,
+        low_inclusive=False,
+        unit="s",
     )
 
     def impact(t, y):
         return _altitude(y)
 
-    impact.terminal, impact.direction = True, -1
+    def apogee(t, y):  # radial velocity of eq L7's positions, up to the factor 1/|r|
+        vx, vy, vz = _apply_transpose(_rotation(y[4], y[5]), y[6:9])
+        return y[0] * vx + y[1] * vy + (y[2] - _R) * vz
+
+    # (solve_ivp reads an event's options from attributes of the function)
+    impact.terminal, impact.direction = True, -1  # type: ignore[attr-defined]
+    apogee.direction = -1  # type: ignore[attr-defined]
     y0 = [
         0.0,
         0.0,
         0.0,
         0.0,
-        math.radians(elevation_deg),
+        launch.elevation_rad,
         0.0,
-        speed_m_s,
+        launch.speed_m_s,
         0.0,
         0.0,
-        spin_rad_s,
+        launch.spin_rad_s,
         0.0,
         0.0,
     ]
     solution = solve_ivp(
         lambda t, y: linear_theory_derivatives(model, y.tolist(), frame_coupling=frame_coupling),
-        (0.0, 400.0),
+        (0.0, max_time),
         y0,
         method="DOP853",
         rtol=rtol,
         atol=1e-9,
         dense_output=True,
-        events=impact,
+        events=(impact, apogee),
     )
+    if solution.status < 0:
+        raise RuntimeError(
+            f"linear-theory limit of {launch.projectile.name} failed at "
+            f"t = {solution.t[-1]:.3f} s: {solution.message}"
+        )
     end = float(solution.t[-1])
-    times = np.append(np.arange(0.0, end, output_step_s), end)
+    times = np.append(np.arange(0.0, end, step), end)
     frame = trajectory_table(model, times, solution.sol(times))
-    last = frame.iloc[-1]
-    frame.attrs.update(
-        projectile=projectile.name,
-        time_of_flight_s=end,
-        range_m=float(last.ground_range_m),
-        cross_range_m=float(last.cross_range_m),
-        apogee_altitude_m=float(frame.altitude_m.max()),
+    top = None
+    if solution.t_events[1].size:
+        row = trajectory_table(model, solution.t_events[1][:1], solution.y_events[1][:1].T)
+        top = (float(solution.t_events[1][0]), *row[["altitude_m", "ground_range_m"]].iloc[0])
+    return describe(
+        frame,
+        engine="linear-theory limit",
+        launch=launch,
+        apogee=top,
+        impact=solution.status == 1,
+        rhs_evaluations=solution.nfev,
+        steps=solution.t.size - 1,
+        max_time_s=max_time,
+        rtol=rtol,
+        density_altitude=density_altitude,
+        frame_coupling=frame_coupling,
     )
-    return frame

@@ -12,12 +12,12 @@ for ``density_altitude="spherical"`` (:mod:`.sixdof` explains the flat-altitude 
 from __future__ import annotations
 
 import warnings
-from functools import cache
 
 import numpy as np
 import pandas as pd
 
 from . import mlt, scenarios
+from .caching import cached_copies
 from .projectiles import get_projectile
 from .scenarios import max_distance_m
 from .sixdof import simulate_6dof
@@ -45,7 +45,7 @@ def _summary(flight: pd.DataFrame) -> dict:
     }
 
 
-@cache
+@cached_copies
 def method_comparison(projectile: str, density_altitude: str = "spherical") -> pd.DataFrame:
     """MLT against 6DOF and 3DOF against 6DOF for ``projectile``'s reference flight: the largest
     position difference along the flight and the differences of apogee, range, time of flight
@@ -73,21 +73,15 @@ def mlt_max_position_difference_km(projectile: str, density_altitude: str = "sph
     return float(table.loc["MLT - 6DOF", "max_position_difference_m"] / 1e3)
 
 
-@cache
+@cached_copies
 def sixdof_convergence(
     projectile: str, density_altitude: str = "spherical", rtols: tuple = (1e-7, 1e-9, 1e-11)
 ) -> pd.DataFrame:
     """The reference 6DOF (rtol 1e-9) against looser and tighter tolerances: the largest
     position difference along the flight and the apogee and range differences (m)."""
-    p = get_projectile(projectile)
+    launch = scenarios.reference_launch(projectile)
     flights = {
-        rtol: simulate_6dof(
-            p,
-            crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
-            density_altitude=density_altitude,
-            rtol=rtol,
-        )
-        for rtol in rtols
+        rtol: simulate_6dof(launch, density_altitude=density_altitude, rtol=rtol) for rtol in rtols
     }
     reference = scenarios.reference_6dof(projectile, density_altitude)
     return pd.DataFrame(
@@ -97,32 +91,31 @@ def sixdof_convergence(
                 "apogee_difference_m": flight.attrs["apogee_altitude_m"]
                 - reference.attrs["apogee_altitude_m"],
                 "range_difference_m": flight.attrs["range_m"] - reference.attrs["range_m"],
-                "rhs_evaluations": flight.attrs["n_rhs"],
+                "rhs_evaluations": flight.attrs["rhs_evaluations"],
             }
             for rtol, flight in flights.items()
         }
     ).T.rename_axis("rtol")
 
 
-@cache
+@cached_copies
 def _limit(projectile: str, density_altitude: str, frame_coupling: bool = False):
     return mlt.simulate_linear_theory_limit(
-        get_projectile(projectile),
-        crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
+        scenarios.reference_launch(projectile),
         density_altitude=density_altitude,
         frame_coupling=frame_coupling,
         rtol=1e-11,
     )
 
 
-@cache
+@cached_copies
 def coefficient_point_convergence(
     projectile: str, density_altitude: str = "spherical", lengths_m: tuple = SEGMENT_LENGTHS_M
 ) -> pd.DataFrame:
     """Largest position difference (m) between MLT and its continuous limit for each
     coefficient evaluation point and segment length: the segment error alone."""
     limit = _limit(projectile, density_altitude)
-    p = get_projectile(projectile)
+    launch = scenarios.reference_launch(projectile)
     rows = {}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelValidityWarning)
@@ -131,8 +124,7 @@ def coefficient_point_convergence(
                 length: max_distance_m(
                     limit,
                     mlt.simulate_mlt(
-                        p,
-                        crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
+                        launch,
                         density_altitude=density_altitude,
                         segment_length_m=length,
                         coefficients_at=at,
@@ -143,7 +135,7 @@ def coefficient_point_convergence(
     return pd.DataFrame(rows).T.rename_axis("coefficients_at")
 
 
-@cache
+@cached_copies
 def linear_theory_budget(projectile: str, density_altitude: str = "spherical") -> pd.DataFrame:
     """Where MLT's difference from the 6DOF comes from: the segments (MLT at 1 km against its
     continuous limit), the products linear theory drops (the limit against the 6DOF), and of
@@ -172,7 +164,7 @@ def linear_theory_budget(projectile: str, density_altitude: str = "spherical") -
     ).T
 
 
-@cache
+@cached_copies
 def inertia_comparison(density_altitude: str = "spherical") -> pd.DataFrame:
     """6DOF and MLT for both inertia sets of each projectile (HP: Appendix B's code against the
     text; LP: the text's 26.8 mm against Appendix B's 25.6 mm diameter): apogee, range, cross
@@ -180,16 +172,11 @@ def inertia_comparison(density_altitude: str = "spherical") -> pd.DataFrame:
     rows = {}
     for name in ("HP", "HP_text", "LP", "LP_appendix_b"):
         p = get_projectile(name)
-        six = simulate_6dof(
-            p, crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S, density_altitude=density_altitude
-        )
+        launch = scenarios.reference_launch(name)
+        six = simulate_6dof(launch, density_altitude=density_altitude)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ModelValidityWarning)
-            linear = mlt.simulate_mlt(
-                p,
-                crosswind_m_s=scenarios.REFERENCE_CROSSWIND_M_S,
-                density_altitude=density_altitude,
-            )
+            linear = mlt.simulate_mlt(launch, density_altitude=density_altitude)
         for method, flight in (("6DOF", six), ("MLT", linear)):
             rows[name, method] = {
                 "pitch_inertia_kg_m2": p.pitch_inertia_kg_m2,

@@ -40,7 +40,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from . import mks
-from .projectiles import Projectile
+from .launch import Launch
 from .validation import check_choice, check_range, finite_array, finite_scalar
 
 __all__ = [
@@ -48,7 +48,7 @@ __all__ = [
     "TEXT_INITIAL_NATURAL_FREQUENCY",
     "NumericalKeplerSolution",
     "solve",
-    "solve_for_projectile",
+    "solve_for_launch",
     "driving_function",
     "natural_frequency",
     "initial_natural_frequency",
@@ -95,7 +95,7 @@ class _Launch:
 def _n_terms(n_terms):
     if n_terms is None:
         return None
-    return int(check_range(finite_scalar(n_terms, "n_terms"), "n_terms", low=1))
+    return mks.check_n_terms(n_terms)
 
 
 def driving_function(solution: mks.ModifiedKeplerSolution, theta_rad, n_terms=None):
@@ -240,8 +240,9 @@ def solve(
     def impact(theta, y):
         return y[0] - 1.0
 
-    apogee.direction = impact.direction = 1.0
-    impact.terminal = True
+    # (solve_ivp reads an event's options from attributes of the function)
+    apogee.direction = impact.direction = 1.0  # type: ignore[attr-defined]
+    impact.terminal = True  # type: ignore[attr-defined]
     result = solve_ivp(
         lambda theta, y: (y[1], second(theta, y[0], y[1])),
         (0.0, theta_max),
@@ -258,20 +259,14 @@ def solve(
     return NumericalKeplerSolution(form, launch.radius_m, first[0], first[1], result.sol)
 
 
-def solve_for_projectile(
-    projectile: Projectile,
-    elevation_deg: float,
-    form: str = "eq_3_25",
-    *,
-    n_terms=None,
-    **mks_options,
+def solve_for_launch(
+    launch: Launch, form: str = "eq_3_25", *, n_terms=None, **mks_options
 ) -> NumericalKeplerSolution:
-    """:func:`solve` for ``projectile`` at ``elevation_deg`` (beta, tau from
-    :func:`mks.for_projectile`, which ``mks_options`` are passed to)."""
-    launch = mks.for_projectile(
-        projectile, finite_scalar(elevation_deg, "elevation_deg"), warn=False, **mks_options
-    )
-    return solve(launch, form, n_terms=n_terms)
+    """:func:`solve` for ``launch`` (beta, tau from :func:`mks.for_launch`, which
+    ``mks_options`` are passed to)."""
+    if not isinstance(launch, Launch):
+        raise TypeError(f"launch must be a Launch; got {type(launch).__name__}")
+    return solve(mks.for_launch(launch, warn=False, **mks_options), form, n_terms=n_terms)
 
 
 class LinearisationError(NamedTuple):

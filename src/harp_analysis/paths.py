@@ -7,22 +7,33 @@ module may rely on the current directory.
   (``harp_analysis/_data/harp``, a link to the repository's ``data/harp`` in a checkout and a
   copy in an installed wheel), found through :mod:`importlib.resources`. They load wherever the
   package is installed.
-- ``ROOT`` and the folders under it (``FIGURES_DIR``, ``NOTEBOOKS_DIR``, ``REGISTRY_DIR``,
-  ``DATA_DIR``): the repository checkout, found from this file's location (an editable install
-  from ``src/``) or the environment variable ``HARP_ANALYSIS_ROOT``. Only the figure registry,
-  the ledger and ``make figures`` need them; asking for one without a checkout raises a
-  RuntimeError that says how to point at one. ``HARP_ANALYSIS_FIGURES_DIR`` sends the figures
-  elsewhere.
+- ``ROOT`` and the folders under it (``COMMITTED_FIGURES_DIR``, ``NOTEBOOKS_DIR``,
+  ``REGISTRY_DIR``, ``DATA_DIR``): the repository checkout, found from this file's location (an
+  editable install from ``src/``) or the environment variable ``HARP_ANALYSIS_ROOT``. Only the
+  figure registry, the ledger and ``make figures`` need them; asking for one without a checkout
+  raises a RuntimeError that says how to point at one.
+- ``FIGURES_DIR``: where :func:`harp_analysis.plotting.save_figure` writes. It is the folder
+  ``HARP_ANALYSIS_FIGURES_DIR`` names, which ``make figures`` sets to the committed ``figures/``;
+  without it, a scratch folder in the system's temporary directory, so running or editing a
+  notebook never overwrites the committed figures unless asked to.
 """
 
 from __future__ import annotations
 
 import os
+import tempfile
 from importlib import resources
 from pathlib import Path
 
-# The checkout folders are served by __getattr__ below.
-__all__ = ["ROOT", "DATA_DIR", "HARP_DATA_DIR", "FIGURES_DIR", "NOTEBOOKS_DIR", "REGISTRY_DIR"]  # noqa: F822
+__all__ = [  # noqa: F822 (the checkout folders are served by __getattr__ below)
+    "ROOT",
+    "DATA_DIR",
+    "HARP_DATA_DIR",
+    "FIGURES_DIR",
+    "COMMITTED_FIGURES_DIR",
+    "NOTEBOOKS_DIR",
+    "REGISTRY_DIR",
+]
 
 HARP_DATA_DIR = Path(str(resources.files("harp_analysis") / "_data" / "harp"))
 
@@ -37,15 +48,17 @@ _ROOT = _find_root()
 _IN_CHECKOUT = {
     "ROOT": lambda root: root,
     "DATA_DIR": lambda root: root / "data",
-    "FIGURES_DIR": lambda root: Path(
-        os.environ.get("HARP_ANALYSIS_FIGURES_DIR", root / "figures")
-    ).resolve(),
+    "COMMITTED_FIGURES_DIR": lambda root: root / "figures",
     "NOTEBOOKS_DIR": lambda root: root / "notebooks",
     "REGISTRY_DIR": lambda root: root / "registry",
 }
 
 
 def __getattr__(name: str) -> Path:
+    if name == "FIGURES_DIR":
+        chosen = os.environ.get("HARP_ANALYSIS_FIGURES_DIR")
+        scratch = Path(tempfile.gettempdir()) / "harp-analysis-figures"
+        return Path(chosen).resolve() if chosen else scratch
     if name not in _IN_CHECKOUT:
         raise AttributeError(f"module 'harp_analysis.paths' has no attribute {name!r}")
     if _ROOT is None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import matplotlib.pyplot as plt
 from matplotlib.figure import Figure
@@ -12,7 +13,7 @@ from .registry import figure_file
 __all__ = ["HOUSE_STYLE", "DPI", "new_figure", "save_figure", "save_table"]
 
 DPI = 150
-HOUSE_STYLE = {
+HOUSE_STYLE: dict[str, Any] = {
     "figure.figsize": (6.4, 4.4),
     "font.family": "DejaVu Sans",  # bundled with matplotlib: identical glyphs on every machine
     "font.size": 10,
@@ -32,7 +33,7 @@ _NO_METADATA = {"Software": None}
 
 def new_figure(nrows: int = 1, ncols: int = 1, **kwargs):
     """``plt.subplots`` in the house style; returns ``(fig, axes)``."""
-    with plt.rc_context(HOUSE_STYLE):
+    with plt.rc_context(HOUSE_STYLE):  # type: ignore[arg-type]  # keys checked at run time
         return plt.subplots(nrows, ncols, **kwargs)
 
 
@@ -48,7 +49,7 @@ def save_figure(fig, number: str) -> Path:
         raise TypeError(f"fig must be a matplotlib Figure; got {type(fig).__name__}")
     path = figure_file(number)
     path.parent.mkdir(parents=True, exist_ok=True)
-    with plt.rc_context(HOUSE_STYLE):
+    with plt.rc_context(HOUSE_STYLE):  # type: ignore[arg-type]  # keys checked at run time
         fig.savefig(path, dpi=DPI, metadata=_NO_METADATA, backend="agg")
     return path
 

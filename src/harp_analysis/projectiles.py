@@ -20,8 +20,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .drag import BASELINE_CONE, M829, AeroTables
-from .validation import check_choice, check_range, finite_scalar
+from .drag import BASELINE_CONE, M829, AeroTables, DragLaw
+from .validation import check_choice, check_range, real_number
 
 __all__ = [
     "Projectile",
@@ -45,7 +45,7 @@ class Projectile:
     name: str
     mass_kg: float
     reference_area_m2: float
-    drag_law: object
+    drag_law: DragLaw
     launch_speed_m_s: float
     source: str
     diameter_m: float | None = None
@@ -54,15 +54,26 @@ class Projectile:
     aero: AeroTables | None = None
 
     def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name:
+            raise TypeError(f"name must be a non-empty string; got {self.name!r}")
         for name in ("mass_kg", "reference_area_m2", "launch_speed_m_s"):
-            check_range(
-                finite_scalar(getattr(self, name), name), name, low=0.0, low_inclusive=False
+            value = check_range(
+                real_number(getattr(self, name), name), name, low=0.0, low_inclusive=False
             )
+            object.__setattr__(self, name, value)
         for name in ("diameter_m", "roll_inertia_kg_m2", "pitch_inertia_kg_m2"):
             if getattr(self, name) is not None:
-                check_range(
-                    finite_scalar(getattr(self, name), name), name, low=0.0, low_inclusive=False
+                value = check_range(
+                    real_number(getattr(self, name), name), name, low=0.0, low_inclusive=False
                 )
+                object.__setattr__(self, name, value)
+        if not callable(self.drag_law) or not hasattr(self.drag_law, "evaluate"):
+            raise TypeError(
+                f"drag_law must be a drag law of harp_analysis.drag (callable, with evaluate); "
+                f"got {self.drag_law!r}"
+            )
+        if self.aero is not None and not isinstance(self.aero, AeroTables):
+            raise TypeError(f"aero must be AeroTables or None; got {type(self.aero).__name__}")
 
     @property
     def launch_energy_j(self) -> float:

@@ -13,16 +13,14 @@ positions at the same time (the direct reading of Chapter 5 C's vector error plu
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
-from functools import cache
 
 import numpy as np
 import pandas as pd
 
 from . import earth, eci
-from .atmosphere import get_atmosphere
-from .projectiles import BASELINE
+from .caching import cached_copies
+from .launch import baseline_chapter_4
 from .threedof import simulate_3dof
 
 __all__ = [
@@ -41,40 +39,25 @@ BEARINGS_DEG = (90.0, 0.0, 270.0)
 ELEVATIONS_DEG = (30.0, 45.0, 65.0, 85.0)
 
 
-@cache
+@cached_copies
 def case(latitude_deg: float, bearing_deg: float, elevation_deg: float, decay: str = "consistent"):
     """(rotating 3DOF table, ECI MKS, error table) of the baseline cone: the ECI MKS of
     :data:`eci.CONSISTENT`, or with eq 6.14's printed decay (``decay="printed"``)."""
     model = replace(eci.CONSISTENT, name=f"consistent, {decay} decay", decay=decay)
-    p = BASELINE
-    flight = simulate_3dof(
-        p,
+    launch = baseline_chapter_4(
         elevation_deg,
         latitude_deg=latitude_deg,
         bearing_deg=bearing_deg,
         rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
-        output_step_s=0.5,
     )
-    cd0 = float(p.drag_law(p.launch_speed_m_s / get_atmosphere("two_segment").speed_of_sound(0.0)))
-    arguments = (
-        p.launch_speed_m_s,
-        math.radians(elevation_deg),
-        math.radians(bearing_deg),
-        math.radians(latitude_deg),
-    )
-    launch = eci.launch_correction(
-        *arguments,
-        drag_area_m2=cd0 * p.reference_area_m2,
-        mass_kg=p.mass_kg,
-        surface_density_kg_m3=1.225,
-        model=model,
-    )
-    solution = eci.solution_for(launch, warn=False)
+    flight = simulate_3dof(launch, output_step_s=0.5)
+    correction = eci.correction_for_launch(launch, model)
+    solution = eci.solution_for(correction, warn=False)
     grid = np.linspace(0.0, solution.impact_angle, 4001)
     times = solution.time(grid)
     flight = flight[flight.time_s <= times[-1]]  # compare while both are in flight
     theta = np.interp(flight.time_s, times, grid)
-    mks_xyz = eci.inertial_positions(solution, launch, math.radians(latitude_deg), theta).T
+    mks_xyz = eci.inertial_positions(solution, correction, launch.latitude_rad, theta).T
     sim_xyz = flight[["x_m", "y_m", "z_m"]].to_numpy().T
     errors = pd.DataFrame(
         {

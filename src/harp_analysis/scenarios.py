@@ -10,13 +10,13 @@ ledger can call them with plain arguments.
 
 from __future__ import annotations
 
-from functools import cache
-
 import numpy as np
 import pandas as pd
 
 from . import earth
 from .atmosphere import get_atmosphere
+from .caching import cached_copies
+from .launch import Launch, chapter_2
 from .mlt import simulate_mlt
 from .projectiles import get_projectile
 from .sixdof import simulate_6dof
@@ -24,8 +24,10 @@ from .threedof import simulate_3dof
 from .validation import check_choice, check_range, finite_scalar
 
 __all__ = [
-    "REFERENCE_ELEVATION_DEG",
-    "REFERENCE_CROSSWIND_M_S",
+    "reference_launch",
+    "fly_3dof",
+    "fly_6dof",
+    "fly_mlt",
     "reference_3dof",
     "reference_6dof",
     "reference_mlt",
@@ -43,25 +45,50 @@ __all__ = [
     "launch_energy_mj",
 ]
 
-REFERENCE_ELEVATION_DEG = 50.0  # Chapter 2 A: theta = 50 deg
-REFERENCE_CROSSWIND_M_S = 5.0  # Chapter 2 A: "a 5 m/s cross wind"
 _FINE_STEP_S = 0.01
 
 
-@cache
+def reference_launch(projectile: str) -> Launch:
+    """Chapter 2 A's launch of ``projectile`` (:func:`harp_analysis.launch.chapter_2`)."""
+    return chapter_2(get_projectile(projectile))
+
+
+@cached_copies
+def fly_3dof(launch: Launch, output_step_s: float = _FINE_STEP_S) -> pd.DataFrame:
+    """The 3DOF flight of ``launch`` at ``output_step_s``, computed once per launch."""
+    return simulate_3dof(launch, output_step_s=output_step_s)
+
+
+@cached_copies
+def fly_6dof(launch: Launch, density_altitude: str = "flat") -> pd.DataFrame:
+    """The 6DOF flight of ``launch`` (Appendix B's port; air density at the flat-frame
+    altitude unless ``density_altitude="spherical"``), computed once per launch."""
+    return simulate_6dof(launch, density_altitude=density_altitude)
+
+
+@cached_copies
+def fly_mlt(
+    launch: Launch,
+    density_altitude: str = "flat",
+    segment_length_m: float = 1000.0,
+    coefficients_at: str = "middle",
+) -> pd.DataFrame:
+    """The MLT flight of ``launch`` (:mod:`.mlt`), computed once per launch and options."""
+    return simulate_mlt(
+        launch,
+        density_altitude=density_altitude,
+        segment_length_m=segment_length_m,
+        coefficients_at=coefficients_at,
+    )
+
+
 def reference_3dof(
-    projectile: str,
-    cross_wind_m_s: float = REFERENCE_CROSSWIND_M_S,
-    output_step_s: float = _FINE_STEP_S,
+    projectile: str, cross_wind_m_s: float = 5.0, output_step_s: float = _FINE_STEP_S
 ) -> pd.DataFrame:
     """The 3DOF flight of ``projectile`` in Chapter 2 A's conditions (Fig 4.8 and Table 4.1
     fly the same launch "with no wind": ``cross_wind_m_s=0``)."""
-    return simulate_3dof(
-        get_projectile(projectile),
-        REFERENCE_ELEVATION_DEG,
-        cross_wind_m_s=cross_wind_m_s,
-        output_step_s=output_step_s,
-    )
+    launch = reference_launch(projectile).but(cross_wind_m_s=cross_wind_m_s)
+    return fly_3dof(launch, output_step_s)
 
 
 def launch_energy_mj(projectile: str) -> float:
@@ -127,34 +154,20 @@ def angular_momentum_change_above(projectile: str, altitude_km: float = 40.0) ->
     return float((momentum.max() - momentum.min()) / momentum.max())
 
 
-@cache
 def reference_6dof(projectile: str, density_altitude: str = "flat") -> pd.DataFrame:
-    """The 6DOF flight of ``projectile`` in Chapter 2 A's conditions (Appendix B's port; its
-    atmosphere at the flat-frame altitude unless ``density_altitude="spherical"``)."""
-    return simulate_6dof(
-        get_projectile(projectile),
-        elevation_deg=REFERENCE_ELEVATION_DEG,
-        crosswind_m_s=REFERENCE_CROSSWIND_M_S,
-        density_altitude=density_altitude,
-    )
+    """The 6DOF flight of ``projectile`` in Chapter 2 A's conditions (:func:`fly_6dof`)."""
+    return fly_6dof(reference_launch(projectile), density_altitude)
 
 
-@cache
 def reference_mlt(
     projectile: str,
     density_altitude: str = "flat",
     segment_length_m: float = 1000.0,
     coefficients_at: str = "middle",
 ) -> pd.DataFrame:
-    """The MLT flight of ``projectile`` in Chapter 2 A's conditions (:mod:`.mlt`), with the
-    6DOF's atmosphere altitude convention ``density_altitude``."""
-    return simulate_mlt(
-        get_projectile(projectile),
-        elevation_deg=REFERENCE_ELEVATION_DEG,
-        crosswind_m_s=REFERENCE_CROSSWIND_M_S,
-        density_altitude=density_altitude,
-        segment_length_m=segment_length_m,
-        coefficients_at=coefficients_at,
+    """The MLT flight of ``projectile`` in Chapter 2 A's conditions (:func:`fly_mlt`)."""
+    return fly_mlt(
+        reference_launch(projectile), density_altitude, segment_length_m, coefficients_at
     )
 
 
@@ -205,12 +218,10 @@ def max_position_difference_km(
     )
 
 
-def swerve(projectile: str, method: str = "6DOF") -> pd.DataFrame:
-    """Fig 2.7: a rigid-body ``method``'s cross range minus the 3DOF's at the same time,
-    against range."""
-    three = reference_3dof(projectile)
-    six = rigid_body_flight(method, projectile, "flat")
-    six = six[six.time_s <= three.time_s.iloc[-1]]
+def swerve(rigid_body: pd.DataFrame, three_dof: pd.DataFrame) -> pd.DataFrame:
+    """Fig 2.7: a rigid-body flight's cross range minus the 3DOF's at the same time, against
+    range."""
+    three, six = three_dof, rigid_body[rigid_body.time_s <= three_dof.time_s.iloc[-1]]
     cross3 = np.interp(six.time_s, three.time_s, three.cross_range_m)
     return pd.DataFrame(
         {

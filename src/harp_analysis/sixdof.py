@@ -91,8 +91,9 @@ from scipy.integrate import solve_ivp
 
 from . import earth
 from .atmosphere import AtmosphereModel, get_atmosphere
+from .launch import Launch
 from .projectiles import Projectile, check_rigid_body
-from .trajectory import BASE_COLUMNS, flight_path_angle, surface_ranges
+from .trajectory import BASE_COLUMNS, describe, flight_path_angle, surface_ranges
 from .validation import check_choice, check_range, finite_array, finite_scalar
 
 __all__ = [
@@ -101,6 +102,7 @@ __all__ = [
     "EXTRA_COLUMNS",
     "RigidBodyModel",
     "rigid_body_model",
+    "rigid_body_launch",
     "appendix_b_derivatives",
     "no_roll_derivatives",
     "trajectory_table",
@@ -139,16 +141,24 @@ class RigidBodyModel:
         wind_m_s: tuple,
         density_altitude: str,
     ):
-        self.mass = projectile.mass_kg
-        self.ix = projectile.roll_inertia_kg_m2
-        self.iy = projectile.pitch_inertia_kg_m2  # Iz = Iy (Appendix B)
-        self.d = projectile.diameter_m
+        projectile = check_rigid_body(projectile, "the rigid-body model")
+        aero, ix, iy, d = (
+            projectile.aero,
+            projectile.roll_inertia_kg_m2,
+            projectile.pitch_inertia_kg_m2,
+            projectile.diameter_m,
+        )
+        assert aero is not None and ix is not None and iy is not None and d is not None
+        self.mass: float = projectile.mass_kg
+        self.ix: float = ix
+        self.iy: float = iy  # Iz = Iy (Appendix B)
+        self.d: float = d
         self.density = atmosphere.density_kernel
         self.sound = atmosphere.sound_kernel
         self.spherical = density_altitude == "spherical"
         self.wind = wind_m_s
-        self.mach_table = list(projectile.aero.mach)
-        table = projectile.aero.table()
+        self.mach_table = list(aero.mach)
+        table = aero.table()
         self.rows = [tuple(map(float, row)) for row in table]
         self.slopes = [tuple(map(float, row)) for row in np.diff(table, axis=0)]
 
@@ -473,14 +483,31 @@ def trajectory_table(model: RigidBodyModel, times: np.ndarray, states: np.ndarra
     return pd.DataFrame({name: columns[name] for name in BASE_COLUMNS + EXTRA_COLUMNS})
 
 
+def rigid_body_launch(launch: Launch, engine: str, density_altitude: str) -> RigidBodyModel:
+    """The checked rigid-body model of ``launch`` for the 6DOF or the MLT, which fly Appendix
+    B's flat frame over a non-rotating Earth from sea level: the bearing, latitude and longitude
+    do not change such a flight; a rotating Earth or a raised site is refused."""
+    if not isinstance(launch, Launch):
+        raise TypeError(f"launch must be a Launch; got {type(launch).__name__}")
+    launch.require_zero(
+        engine,
+        "rotation_rate_rad_s",
+        "site_altitude_m",
+        reason="Appendix B's frame is flat, non-rotating and starts at sea level",
+    )
+    projectile = check_rigid_body(launch.projectile, f"the {engine}")
+    if math.cos(launch.elevation_rad) <= _SINGULAR_COS:
+        raise ValueError(
+            f"launch.elevation_deg = {launch.elevation_deg:g} deg starts at the singularity of "
+            "Appendix B's Euler angles (theta = 90 deg); launch a little lower"
+        )
+    wind = (-launch.head_wind_m_s, launch.cross_wind_m_s, 0.0)
+    return rigid_body_model(projectile, launch.atmosphere, wind, density_altitude)
+
+
 def simulate_6dof(
-    projectile: Projectile,
+    launch: Launch,
     *,
-    elevation_deg: float = 50.0,
-    speed_m_s: float = 2022.0,
-    spin_rad_s: float = 10.0,
-    crosswind_m_s: float = 5.0,
-    atmosphere="two_segment",
     density_altitude: str = "flat",
     rtol: float = 1e-9,
     max_time_s: float = 400.0,
@@ -488,42 +515,25 @@ def simulate_6dof(
 ) -> pd.DataFrame:
     """One 6DOF flight of Appendix B from launch to impact, as the tidy trajectory table.
 
-    Launch from the flat frame's origin with psi = phi = 0, theta = ``elevation_deg``, body
-    velocity [``speed_m_s``, 0, 0] and roll rate ``spin_rad_s``; a constant ``crosswind_m_s``
-    blows along +y (toward positive cross range). The equations are Appendix B's
-    (:func:`appendix_b_derivatives`) integrated in the no-roll frame
-    (:func:`no_roll_derivatives`) by scipy's DOP853 with relative tolerance ``rtol``.
+    Launch from the flat frame's origin with psi = phi = 0, theta = the launch elevation, body
+    velocity [speed, 0, 0] and roll rate ``launch.spin_rad_s``; the launch's cross wind blows
+    along +y (toward positive cross range), its head wind along -x. The equations are Appendix
+    B's (:func:`appendix_b_derivatives`) integrated in the no-roll frame
+    (:func:`no_roll_derivatives`) by scipy's DOP853 with relative tolerance ``rtol``; air
+    density at the flat-frame altitude as Appendix B takes it, or ``density_altitude=
+    "spherical"``.
 
     Rows every ``output_step_s`` (dense output) and at the end: the impact, where the spherical
-    altitude |r| - R returns to zero, or ``max_time_s`` if it comes first (no exception;
-    ``attrs["impact"]`` is False). Columns: :data:`harp_analysis.trajectory.BASE_COLUMNS`
-    (x_m, y_m, z_m in the flat frame, z down; speed relative to the non-rotating frame; Mach
-    and angle of attack air-relative; ``drag_coefficient`` the applied axial coefficient
-    -CX0 - CX2 (v^2 + w^2)/V^2; ``drag_to_gravity`` the aerodynamic force component opposing
-    the air-relative velocity over m GM / |r|^2) and :data:`EXTRA_COLUMNS`. ``frame.attrs``
-    holds the apogee (time, altitude, ground range; NaN if not reached), the impact, the
-    time of flight, range and cross range at the last row, and the integration statistics
-    ``n_rhs`` and ``n_steps``.
+    altitude |r| - R returns to zero, or ``max_time_s`` if it comes first (a
+    TruncatedFlightWarning). Columns: :data:`harp_analysis.trajectory.BASE_COLUMNS` (x_m, y_m,
+    z_m in the flat frame, z down; speed relative to the non-rotating frame; Mach and angle of
+    attack air-relative; ``drag_coefficient`` the applied axial coefficient -CX0 - CX2 (v^2 +
+    w^2)/V^2; ``drag_to_gravity`` the aerodynamic force component opposing the air-relative
+    velocity over m GM / |r|^2) and :data:`EXTRA_COLUMNS`; ``frame.attrs`` the shared metadata
+    (:func:`harp_analysis.trajectory.describe`).
     """
-    projectile = check_rigid_body(projectile, "the 6DOF")
-    elevation = check_range(
-        finite_scalar(elevation_deg, "elevation_deg"),
-        "elevation_deg",
-        low=0.0,
-        low_inclusive=False,
-        high=90.0,
-        unit="deg",
-    )
-    if math.cos(math.radians(elevation)) <= _SINGULAR_COS:
-        raise ValueError(
-            f"elevation_deg = {elevation:g} deg starts at the singularity of "
-            "Appendix B's Euler angles (theta = 90 deg); launch a little lower"
-        )
-    speed = check_range(
-        finite_scalar(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0, low_inclusive=False, unit="m/s"
-    )
-    spin = finite_scalar(spin_rad_s, "spin_rad_s")
-    crosswind = finite_scalar(crosswind_m_s, "crosswind_m_s")
+    model = rigid_body_launch(launch, "6DOF", density_altitude)
+    projectile = launch.projectile
     rtol = check_range(finite_scalar(rtol, "rtol"), "rtol", low=1e-13, high=1e-3)
     max_time = check_range(
         finite_scalar(max_time_s, "max_time_s"),
@@ -539,7 +549,7 @@ def simulate_6dof(
         low_inclusive=False,
         unit="s",
     )
-    model = rigid_body_model(projectile, atmosphere, (0.0, crosswind, 0.0), density_altitude)
+    elevation, speed, spin = launch.elevation_deg, launch.speed_m_s, launch.spin_rad_s
 
     def impact(t, y):
         return math.sqrt(y[0] ** 2 + y[1] ** 2 + (_R - y[2]) ** 2) - _R
@@ -553,9 +563,10 @@ def simulate_6dof(
 
     # The launch is upward, so the altitude leaves zero increasing: only a downward crossing
     # (direction -1) is an impact and the launch point is not one.
-    impact.terminal, impact.direction = True, -1
-    apogee.direction = -1
-    singular_pitch.terminal, singular_pitch.direction = True, -1
+    # (solve_ivp reads an event's options from attributes of the function)
+    impact.terminal, impact.direction = True, -1  # type: ignore[attr-defined]
+    apogee.direction = -1  # type: ignore[attr-defined]
+    singular_pitch.terminal, singular_pitch.direction = True, -1  # type: ignore[attr-defined]
     y0 = np.array(
         [0.0, 0.0, 0.0, 0.0, math.radians(elevation), 0.0, speed, 0.0, 0.0, spin, 0.0, 0.0]
     )
@@ -588,34 +599,19 @@ def simulate_6dof(
     times = np.append(np.arange(0.0, end, step), end)
     frame = trajectory_table(model, times, solution.sol(times))
     apogee_times = solution.t_events[1]
+    highest = None
     if apogee_times.size:
         top = trajectory_table(model, apogee_times[:1], solution.y_events[1][:1].T).iloc[0]
-        apogee_time, apogee_altitude, apogee_range = (
-            float(apogee_times[0]),
-            float(top.altitude_m),
-            float(top.ground_range_m),
-        )
-    else:
-        apogee_time = apogee_altitude = apogee_range = math.nan
-    last = frame.iloc[-1]
-    frame.attrs.update(
-        projectile=projectile.name,
-        elevation_deg=elevation,
-        speed_m_s=speed,
-        spin_rad_s=spin,
-        crosswind_m_s=crosswind,
-        atmosphere=_atmosphere_model(atmosphere).name,
-        density_altitude=density_altitude,
-        rtol=rtol,
+        highest = (float(apogee_times[0]), float(top.altitude_m), float(top.ground_range_m))
+    return describe(
+        frame,
+        engine="6DOF",
+        launch=launch,
+        apogee=highest,
         impact=solution.status == 1,
-        time_of_flight_s=end,
-        range_m=float(last.ground_range_m),
-        cross_range_m=float(last.cross_range_m),
-        impact_speed_m_s=float(last.speed_m_s),
-        apogee_time_s=apogee_time,
-        apogee_altitude_m=apogee_altitude,
-        apogee_ground_range_m=apogee_range,
-        n_rhs=int(solution.nfev),
-        n_steps=int(solution.t.size - 1),
+        rhs_evaluations=solution.nfev,
+        steps=solution.t.size - 1,
+        max_time_s=max_time,
+        rtol=rtol,
+        density_altitude=density_altitude,
     )
-    return frame

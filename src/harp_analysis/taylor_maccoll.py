@@ -129,8 +129,9 @@ def _normal_velocity_zero(theta, y, gamma):
     return y[1]
 
 
-_normal_velocity_zero.terminal = True
-_normal_velocity_zero.direction = 1.0
+# scipy's solve_ivp reads an event's options from attributes of the function
+_normal_velocity_zero.terminal = True  # type: ignore[attr-defined]
+_normal_velocity_zero.direction = 1.0  # type: ignore[attr-defined]
 
 
 def _cone_angle(shock_rad, mach, gamma, theta_stop):
@@ -252,10 +253,12 @@ def cone_flow(mach, half_angle_rad, gamma=1.4) -> ConeFlow:
     points = [
         _cone_flow_point(float(m), float(t), gamma) for m, t in zip(mach.flat, half_angle.flat)
     ]
-    columns = [np.reshape(column, mach.shape) for column in zip(*points)]
+    shock, surface, pressure = (np.reshape(column, mach.shape) for column in zip(*points))
     if mach.ndim == 0:
-        return ConeFlow(float(mach), float(half_angle), *map(float, columns), gamma)
-    return ConeFlow(mach.copy(), half_angle.copy(), *columns, gamma)
+        return ConeFlow(
+            float(mach), float(half_angle), float(shock), float(surface), float(pressure), gamma
+        )
+    return ConeFlow(mach.copy(), half_angle.copy(), shock, surface, pressure, gamma)
 
 
 def cone_drag_coefficient(

@@ -17,6 +17,7 @@ rotation off this frame is also Earth-fixed. Winds are fixed to the Earth, given
 from __future__ import annotations
 
 import warnings
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,30 +25,20 @@ import pandas as pd
 
 from . import earth
 from .atmosphere import AtmosphereModel, get_atmosphere
-from .drag import get_drag_law
 from .integrator import Breakpoint, Event, integrate_batch
-from .projectiles import Projectile
-from .trajectory import BASE_COLUMNS, flight_path_angle, surface_ranges
-from .validation import ModelValidityWarning, check_range, finite_array, finite_scalar
+from .launch import Launch
+from .trajectory import (
+    BASE_COLUMNS,
+    TruncatedFlightWarning,
+    describe,
+    flight_path_angle,
+    launch_frame,
+    rotate_about_axis,
+    surface_ranges,
+)
+from .validation import check_range, finite_scalar
 
-__all__ = ["simulate_3dof", "simulate_3dof_batch", "launch_frame"]
-
-
-def launch_frame(latitude_rad, longitude_rad, bearing_rad):
-    """Unit vectors (3, n) at the launch point: up, downrange (along the bearing) and east."""
-    lat, lon, bearing = np.broadcast_arrays(latitude_rad, longitude_rad, bearing_rad)
-    up = np.array([np.cos(lat) * np.cos(lon), np.cos(lat) * np.sin(lon), np.sin(lat)])
-    east = np.array([-np.sin(lon), np.cos(lon), np.zeros_like(lon)])
-    north = np.cross(up, east, axis=0)
-    downrange = np.sin(bearing) * east + np.cos(bearing) * north
-    return up, downrange, east
-
-
-def _rotate_z(vectors, angle_rad):
-    """Rotate (3, n) vectors by ``angle_rad`` (n,) about the Earth's axis."""
-    c, s = np.cos(angle_rad), np.sin(angle_rad)
-    x, y, z = vectors
-    return np.array([c * x - s * y, s * x + c * y, z])
+__all__ = ["simulate_3dof", "simulate_3dof_batch"]
 
 
 @dataclass(frozen=True)
@@ -65,7 +56,7 @@ class _Dynamics:
         omega = self.rotation_rate_rad_s
         if not omega:
             return y[3:] - self.wind_m_s[:, index]
-        wind = _rotate_z(self.wind_m_s[:, index], omega * t)
+        wind = rotate_about_axis(self.wind_m_s[:, index], omega * t)
         return y[3:] - omega * np.array([-y[1], y[0], np.zeros_like(y[0])]) - wind
 
     def forces(self, t, y, index):
@@ -85,79 +76,73 @@ class _Dynamics:
         return -earth.GM_M3_S2 / radius**3 * y[:3] - drag * air
 
 
-def _positive(value, name, unit=""):
-    return check_range(finite_array(value, name), name, low=0.0, low_inclusive=False, unit=unit)
-
-
-def _run(
-    projectile: Projectile,
-    elevation_deg,
-    speed_m_s,
-    latitude_deg,
-    longitude_deg,
-    bearing_deg,
-    atmosphere,
-    drag_law,
-    rotation_rate_rad_s,
-    head_wind_m_s,
-    cross_wind_m_s,
-    rtol,
-    max_time_s,
-):
-    if not isinstance(projectile, Projectile):
-        raise TypeError(f"projectile must be a Projectile; got {type(projectile).__name__}")
-    elevation = check_range(
-        finite_array(elevation_deg, "elevation_deg"),
-        "elevation_deg",
-        low=0.0,
-        low_inclusive=False,
-        high=90.0,
-        unit="deg",
-    )
-    speed = _positive(
-        projectile.launch_speed_m_s if speed_m_s is None else speed_m_s, "speed_m_s", "m/s"
-    )
-    latitude = check_range(
-        finite_array(latitude_deg, "latitude_deg"), "latitude_deg", low=-90.0, high=90.0, unit="deg"
-    )
-    longitude = finite_array(longitude_deg, "longitude_deg")
-    bearing = check_range(
-        finite_array(bearing_deg, "bearing_deg"),
-        "bearing_deg",
-        low=0.0,
-        high=360.0,
-        high_inclusive=False,
-        unit="deg",
-    )
-    head, cross = (
-        finite_array(head_wind_m_s, "head_wind_m_s"),
-        finite_array(cross_wind_m_s, "cross_wind_m_s"),
-    )
-    omega = finite_scalar(rotation_rate_rad_s, "rotation_rate_rad_s")
+def _numerics(rtol, max_time_s):
     rtol = float(
         check_range(finite_scalar(rtol, "rtol"), "rtol", low=0.0, low_inclusive=False, high=1e-3)
     )
-    max_time_s = float(_positive(finite_scalar(max_time_s, "max_time_s"), "max_time_s", "s"))
-    model = atmosphere if isinstance(atmosphere, AtmosphereModel) else get_atmosphere(atmosphere)
-    law = (
-        projectile.drag_law
-        if drag_law is None
-        else (get_drag_law(drag_law) if isinstance(drag_law, str) else drag_law)
+    max_time_s = float(
+        check_range(
+            finite_scalar(max_time_s, "max_time_s"),
+            "max_time_s",
+            low=0.0,
+            low_inclusive=False,
+            unit="s",
+        )
     )
+    return rtol, max_time_s
 
+
+def _launches(launches) -> list[Launch]:
+    """One or many launches that can share a batch: one projectile, air, Earth rotation and
+    site altitude (the impact event, a function of the state alone, needs one site)."""
+    if isinstance(launches, Launch):
+        return [launches]
+    if isinstance(launches, str | bytes) or not isinstance(launches, Iterable):
+        raise TypeError(
+            "launches must be a Launch or a sequence of Launch (harp_analysis.launch.Launch); "
+            f"got {type(launches).__name__}"
+        )
+    launches = list(launches)
+    if not launches:
+        raise ValueError("launches must hold at least one Launch")
+    for position, launch in enumerate(launches):
+        if not isinstance(launch, Launch):
+            raise TypeError(f"launches[{position}] must be a Launch; got {type(launch).__name__}")
+        for name in ("projectile", "atmosphere", "rotation_rate_rad_s", "site_altitude_m"):
+            if getattr(launch, name) != getattr(launches[0], name):
+                raise ValueError(
+                    f"launches[{position}].{name} differs from launches[0]'s: a batch shares "
+                    "one projectile, atmosphere, Earth rotation and site altitude"
+                )
+    return launches
+
+
+def _run(launches: list[Launch], rtol, max_time_s):
+    first = launches[0]
+    projectile, omega = first.projectile, first.rotation_rate_rad_s
+    model = get_atmosphere(first.atmosphere)
+    site = first.site_altitude_m  # shared: the impact event sees states, not launch numbers
     elevation, speed, latitude, longitude, bearing, head, cross = (
-        np.atleast_1d(x).astype(float)
-        for x in np.broadcast_arrays(elevation, speed, latitude, longitude, bearing, head, cross)
+        np.array([getattr(launch, name) for launch in launches], dtype=float)
+        for name in (
+            "elevation_deg",
+            "speed_m_s",
+            "latitude_deg",
+            "longitude_deg",
+            "bearing_deg",
+            "head_wind_m_s",
+            "cross_wind_m_s",
+        )
     )
     el, lat, lon, brg = (np.radians(x) for x in (elevation, latitude, longitude, bearing))
     up, downrange, _ = launch_frame(lat, lon, brg)
-    position = earth.RADIUS_M * up
+    position = (earth.RADIUS_M + site) * up
     ground_velocity = speed * (np.cos(el) * downrange + np.sin(el) * up)
     surface_velocity = omega * np.array([-position[1], position[0], np.zeros_like(lat)])
     right = np.cross(downrange, up, axis=0)
     dynamics = _Dynamics(
         model,
-        law,
+        projectile.drag_law,
         projectile.reference_area_m2 / (2 * projectile.mass_kg),
         projectile.mass_kg,
         omega,
@@ -171,13 +156,18 @@ def _run(
     def altitude(t, y):
         return np.sqrt(np.sum(y[:3] ** 2, axis=0)) - earth.RADIUS_M
 
+    def above_site(t, y):
+        return altitude(t, y) - site
+
     events = (
         Event("apogee", radial_velocity),
-        Event("impact", altitude, terminal=True, after_s=1e-6),
+        Event("impact", above_site, terminal=True, after_s=1e-6),
     )
-    breakpoints = tuple(
-        Breakpoint(lambda t, y, b=b: altitude(t, y) - b) for b in model.breakpoints_m
-    )
+
+    def above_layer(boundary_m):
+        return lambda t, y: altitude(t, y) - boundary_m
+
+    breakpoints = tuple(Breakpoint(above_layer(b)) for b in model.breakpoints_m)
     scale = np.array([earth.RADIUS_M] * 3 + [1e3] * 3)
     solution = integrate_batch(
         dynamics.acceleration,
@@ -188,24 +178,7 @@ def _run(
         events=events,
         breakpoints=breakpoints,
     )
-    missed = np.isnan(solution.event_times["impact"])
-    if missed.any():
-        warnings.warn(
-            f"{missed.sum()} of {missed.size} launches did not return to the ground "
-            f"within max_time_s = {max_time_s:g} s",
-            ModelValidityWarning,
-            stacklevel=3,
-        )
-    launch = dict(
-        elevation_deg=elevation,
-        speed_m_s=speed,
-        latitude_deg=latitude,
-        longitude_deg=longitude,
-        bearing_deg=bearing,
-        head_wind_m_s=head,
-        cross_wind_m_s=cross,
-    )
-    return solution, dynamics, up, downrange, launch
+    return solution, dynamics, up, downrange
 
 
 def _table(solution, dynamics, up, downrange, index, times_s) -> pd.DataFrame:
@@ -213,7 +186,7 @@ def _table(solution, dynamics, up, downrange, index, times_s) -> pd.DataFrame:
     y = solution.sample(index, times_s)
     idx = np.full(times_s.size, index)
     radius, altitude, _, air_speed, mach, cd, density = dynamics.forces(times_s, y, idx)
-    earth_fixed = _rotate_z(y[:3], -dynamics.rotation_rate_rad_s * times_s).T
+    earth_fixed = rotate_about_axis(y[:3], -dynamics.rotation_rate_rad_s * times_s).T
     ground, cross = surface_ranges(earth_fixed, up[:, index], downrange[:, index])
     drag = dynamics.drag_factor_m2_kg * density * cd * air_speed**2
     columns = dict(
@@ -234,133 +207,107 @@ def _table(solution, dynamics, up, downrange, index, times_s) -> pd.DataFrame:
     return pd.DataFrame({name: columns[name] for name in BASE_COLUMNS})
 
 
-def _summary(solution, dynamics, up, downrange, launch) -> pd.DataFrame:
+def _apogee_and_end(solution, index):
+    apogee_t = solution.event_times["apogee"][index]
+    impact_t = solution.event_times["impact"][index]
+    end_t = impact_t if np.isfinite(impact_t) else solution.times[index][-1]
+    return apogee_t, bool(np.isfinite(impact_t)), end_t
+
+
+def simulate_3dof(
+    launch: Launch, *, rtol: float = 1e-9, max_time_s: float = 3000.0, output_step_s: float = 0.5
+) -> pd.DataFrame:
+    """One 3DOF flight of ``launch`` from the gun to the ground (back to the site's altitude),
+    as the table of :mod:`.trajectory` with its shared metadata.
+
+    ``rtol`` is the integrator's relative tolerance; rows come every ``output_step_s`` plus
+    the impact, or the last time reached if ``max_time_s`` comes first (a
+    TruncatedFlightWarning). The state is inertial; with ``launch.rotation_rate_rad_s`` the air
+    turns with the Earth and ranges are measured on the turning Earth."""
+    if not isinstance(launch, Launch):
+        raise TypeError(
+            f"launch must be a Launch (harp_analysis.launch.Launch); got {type(launch).__name__} "
+            "(simulate_3dof_batch flies a sequence of them)"
+        )
+    step = check_range(
+        finite_scalar(output_step_s, "output_step_s"),
+        "output_step_s",
+        low=0.0,
+        low_inclusive=False,
+        unit="s",
+    )
+    launches = _launches(launch)
+    rtol, max_time_s = _numerics(rtol, max_time_s)
+    solution, dynamics, up, downrange = _run(launches, rtol, max_time_s)
+    apogee_t, impact, end_t = _apogee_and_end(solution, 0)
+    times = np.append(np.arange(0.0, end_t, step), end_t)
+    table = _table(solution, dynamics, up, downrange, 0, times)
+    apogee = None
+    if np.isfinite(apogee_t):
+        top = _table(solution, dynamics, up, downrange, 0, np.array([apogee_t])).iloc[0]
+        apogee = (apogee_t, top.altitude_m, top.ground_range_m)
+    return describe(
+        table,
+        engine="3DOF",
+        launch=launches[0],
+        apogee=apogee,
+        impact=impact,
+        rhs_evaluations=solution.rhs_evaluations,
+        steps=int(solution.steps[0]),
+        max_time_s=max_time_s,
+        rtol=rtol,
+    )
+
+
+def simulate_3dof_batch(
+    launches, *, rtol: float = 1e-9, max_time_s: float = 3000.0
+) -> pd.DataFrame:
+    """Many 3DOF launches integrated together: ``launches`` is a sequence of :class:`Launch`
+    sharing one projectile, atmosphere, Earth rotation and site altitude (e.g.
+    ``[launch.but(elevation_deg=e) for e in elevations]``). One row per launch: its elevation,
+    speed, bearing and latitude, and the metadata keys of :func:`simulate_3dof` (but
+    ``engine``, ``launch`` and the batch-wide ``rhs_evaluations``, which are in
+    ``frame.attrs``). Same physics and integrator as :func:`simulate_3dof`, which is a batch of
+    one."""
+    launches = _launches(launches)
+    rtol, max_time_s = _numerics(rtol, max_time_s)
+    solution, dynamics, up, downrange = _run(launches, rtol, max_time_s)
     rows = []
-    for i in range(solution.steps.size):
-        apogee_t = solution.event_times["apogee"][i]
-        impact_t = solution.event_times["impact"][i]
-        end_t = impact_t if np.isfinite(impact_t) else solution.times[i][-1]
-        times = np.array([apogee_t, end_t]) if np.isfinite(apogee_t) else np.array([end_t, end_t])
+    for i, launch in enumerate(launches):
+        apogee_t, impact, end_t = _apogee_and_end(solution, i)
+        times = np.array([apogee_t if np.isfinite(apogee_t) else end_t, end_t])
         table = _table(solution, dynamics, up, downrange, i, times)
         rows.append(
             dict(
+                elevation_deg=launch.elevation_deg,
+                speed_m_s=launch.speed_m_s,
+                bearing_deg=launch.bearing_deg,
+                latitude_deg=launch.latitude_deg,
                 apogee_time_s=apogee_t,
                 apogee_altitude_m=table.altitude_m[0] if np.isfinite(apogee_t) else np.nan,
                 apogee_ground_range_m=table.ground_range_m[0] if np.isfinite(apogee_t) else np.nan,
-                impact=bool(np.isfinite(impact_t)),
                 time_of_flight_s=end_t,
                 range_m=table.ground_range_m[1],
                 cross_range_m=table.cross_range_m[1],
                 impact_speed_m_s=table.speed_m_s[1],
+                impact=impact,
+                stop_reason="impact" if impact else "max_time",
                 steps=int(solution.steps[i]),
             )
         )
-    return pd.concat([pd.DataFrame(launch), pd.DataFrame(rows)], axis=1)
-
-
-def simulate_3dof(
-    projectile: Projectile,
-    elevation_deg: float,
-    *,
-    speed_m_s: float | None = None,
-    latitude_deg: float = 0.0,
-    longitude_deg: float = 0.0,
-    bearing_deg: float = 90.0,
-    atmosphere: str | AtmosphereModel = "two_segment",
-    drag_law=None,
-    rotation_rate_rad_s: float = 0.0,
-    head_wind_m_s: float = 0.0,
-    cross_wind_m_s: float = 0.0,
-    rtol: float = 1e-9,
-    max_time_s: float = 3000.0,
-    output_step_s: float = 0.5,
-) -> pd.DataFrame:
-    """One 3DOF trajectory from launch to impact, as the tidy table of :mod:`.trajectory`.
-
-    ``speed_m_s`` is relative to the ground (the projectile's nominal speed if omitted) and
-    ``elevation_deg`` and ``bearing_deg`` are the gun's. ``drag_law`` defaults to the
-    projectile's own; pass a name of :data:`harp_analysis.drag.DRAG_LAW_NAMES` or a law object
-    to override it. Rows come every ``output_step_s`` plus the impact; ``frame.attrs`` holds
-    the apogee, the impact, the launch and the integration statistics. The Earth's rotation is
-    off by default (the non-rotating ECEF of Chapters 2-4); the text's rate is
-    :data:`harp_analysis.earth.ROTATION_RATE_RAD_S`.
-    """
-    step = finite_scalar(output_step_s, "output_step_s")
-    check_range(step, "output_step_s", low=0.0, low_inclusive=False, unit="s")
-    for name, value in (
-        ("elevation_deg", elevation_deg),
-        ("speed_m_s", speed_m_s),
-        ("latitude_deg", latitude_deg),
-        ("bearing_deg", bearing_deg),
-    ):
-        if value is not None:
-            finite_scalar(value, name)
-    solution, dynamics, up, downrange, launch = _run(
-        projectile,
-        elevation_deg,
-        speed_m_s,
-        latitude_deg,
-        longitude_deg,
-        bearing_deg,
-        atmosphere,
-        drag_law,
-        rotation_rate_rad_s,
-        head_wind_m_s,
-        cross_wind_m_s,
-        rtol,
-        max_time_s,
-    )
-    summary = _summary(solution, dynamics, up, downrange, launch).iloc[0]
-    end = summary.time_of_flight_s
-    times = np.append(np.arange(0.0, end, step), end)
-    table = _table(solution, dynamics, up, downrange, 0, times)
-    table.attrs.update(
-        summary.to_dict(),
-        projectile=projectile.name,
+    summary = pd.DataFrame(rows)
+    missed = int((~summary.impact).sum())
+    if missed:
+        warnings.warn(
+            f"{missed} of {len(summary)} 3DOF launches did not return to the ground "
+            f"within max_time_s = {max_time_s:g} s",
+            TruncatedFlightWarning,
+            stacklevel=2,
+        )
+    summary.attrs.update(
+        engine="3DOF",
+        projectile=launches[0].projectile.name,
         rhs_evaluations=solution.rhs_evaluations,
-        rotation_rate_rad_s=rotation_rate_rad_s,
         rtol=rtol,
     )
-    return table
-
-
-def simulate_3dof_batch(
-    projectile: Projectile,
-    elevation_deg,
-    *,
-    speed_m_s=None,
-    latitude_deg=0.0,
-    longitude_deg=0.0,
-    bearing_deg=90.0,
-    atmosphere="two_segment",
-    drag_law=None,
-    rotation_rate_rad_s=0.0,
-    head_wind_m_s=0.0,
-    cross_wind_m_s=0.0,
-    rtol=1e-9,
-    max_time_s=3000.0,
-) -> pd.DataFrame:
-    """Many 3DOF launches integrated together (arguments broadcast against each other).
-
-    Returns one row per launch: its inputs, apogee (time, altitude, ground range), impact
-    (time of flight, range, cross range, speed) and the steps taken. Same physics and
-    integrator as :func:`simulate_3dof`, which is a batch of one.
-    """
-    solution, dynamics, up, downrange, launch = _run(
-        projectile,
-        elevation_deg,
-        speed_m_s,
-        latitude_deg,
-        longitude_deg,
-        bearing_deg,
-        atmosphere,
-        drag_law,
-        rotation_rate_rad_s,
-        head_wind_m_s,
-        cross_wind_m_s,
-        rtol,
-        max_time_s,
-    )
-    summary = _summary(solution, dynamics, up, downrange, launch)
-    summary.attrs.update(projectile=projectile.name, rhs_evaluations=solution.rhs_evaluations)
     return summary

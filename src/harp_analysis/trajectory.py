@@ -17,15 +17,36 @@ DataFrame with at least these columns, one row per output time, SI units:
 ``specific_angular_momentum_m2_s``  |r x v| about the Earth's centre, inertial v (Fig 2.10)
 ``flight_path_angle_rad``      angle of the inertial velocity above the local horizontal
 ============================== ===============================================================
+
+and the same metadata in ``frame.attrs`` (:func:`describe`, :data:`METADATA_KEYS`): the engine,
+the launch, the apogee (time, altitude, ground range; NaN if not reached), the end of the flight
+(time of flight, range, cross range and speed at the last row), whether it reached the ground
+and why it stopped, and the work it took (right-hand-side evaluations and steps, or the
+engine's analogue). A flight cut off by ``max_time_s`` warns the same way in every engine
+(:class:`TruncatedFlightWarning`).
 """
 
 from __future__ import annotations
 
+import math
+import warnings
+
 import numpy as np
 
 from .earth import RADIUS_M
+from .validation import ModelValidityWarning
 
-__all__ = ["BASE_COLUMNS", "surface_ranges", "flight_path_angle"]
+__all__ = [
+    "BASE_COLUMNS",
+    "METADATA_KEYS",
+    "STOP_REASONS",
+    "TruncatedFlightWarning",
+    "describe",
+    "launch_frame",
+    "rotate_about_axis",
+    "surface_ranges",
+    "flight_path_angle",
+]
 
 BASE_COLUMNS = (
     "time_s",
@@ -67,3 +88,91 @@ def flight_path_angle(position_m, velocity_m_s):
     velocity = np.asarray(velocity_m_s, dtype=float)
     radial = np.sum(position * velocity, axis=-1) / np.linalg.norm(position, axis=-1)
     return np.arcsin(np.clip(radial / np.linalg.norm(velocity, axis=-1), -1.0, 1.0))
+
+
+#: The keys every engine puts in ``frame.attrs``.
+METADATA_KEYS = (
+    "engine",
+    "launch",
+    "apogee_time_s",
+    "apogee_altitude_m",
+    "apogee_ground_range_m",
+    "time_of_flight_s",
+    "range_m",
+    "cross_range_m",
+    "impact_speed_m_s",
+    "impact",
+    "stop_reason",
+    "rhs_evaluations",
+    "steps",
+)
+#: Why a flight ended: it reached the ground, or ``max_time_s`` came first.
+STOP_REASONS = ("impact", "max_time")
+
+
+class TruncatedFlightWarning(ModelValidityWarning):
+    """A flight was cut off by ``max_time_s`` before it returned to the ground."""
+
+
+def describe(
+    frame,
+    *,
+    engine: str,
+    launch,
+    apogee: tuple[float, float, float] | None,
+    impact: bool,
+    rhs_evaluations: int,
+    steps: int,
+    max_time_s: float,
+    **extra,
+):
+    """Put the shared metadata on an engine's trajectory table and return it.
+
+    ``apogee`` is (time, altitude, ground range) or None if the flight never turned down; the
+    end of the flight is the table's last row. A flight that did not reach the ground warns
+    (:class:`TruncatedFlightWarning`) and records ``stop_reason = "max_time"``."""
+    last = frame.iloc[-1]
+    apogee_time, apogee_altitude, apogee_range = apogee if apogee else (math.nan,) * 3
+    if not impact:
+        warnings.warn(
+            f"the {engine} flight of {launch.projectile.name} did not return to the ground "
+            f"within max_time_s = {max_time_s:g} s; its range and time of flight are those of "
+            "the last row",
+            TruncatedFlightWarning,
+            stacklevel=3,
+        )
+    frame.attrs.update(
+        engine=engine,
+        launch=launch,
+        apogee_time_s=float(apogee_time),
+        apogee_altitude_m=float(apogee_altitude),
+        apogee_ground_range_m=float(apogee_range),
+        time_of_flight_s=float(last.time_s),
+        range_m=float(last.ground_range_m),
+        cross_range_m=float(last.cross_range_m),
+        impact_speed_m_s=float(last.speed_m_s),
+        impact=bool(impact),
+        stop_reason="impact" if impact else "max_time",
+        rhs_evaluations=int(rhs_evaluations),
+        steps=int(steps),
+        **extra,
+    )
+    return frame
+
+
+def launch_frame(latitude_rad, longitude_rad, bearing_rad):
+    """Unit vectors (3, n) at the launch point in the Earth-centred frame (z north, x toward
+    longitude 0): up, downrange (along the bearing from true north) and east."""
+    lat, lon, bearing = np.broadcast_arrays(latitude_rad, longitude_rad, bearing_rad)
+    up = np.array([np.cos(lat) * np.cos(lon), np.cos(lat) * np.sin(lon), np.sin(lat)])
+    east = np.array([-np.sin(lon), np.cos(lon), np.zeros_like(lon)])
+    north = np.cross(up, east, axis=0)
+    downrange = np.sin(bearing) * east + np.cos(bearing) * north
+    return up, downrange, east
+
+
+def rotate_about_axis(vectors, angle_rad):
+    """Rotate (3, n) vectors by ``angle_rad`` (n,) about the Earth's axis (z)."""
+    c, s = np.cos(angle_rad), np.sin(angle_rad)
+    x, y, z = vectors
+    return np.array([c * x - s * y, s * x + c * y, z])

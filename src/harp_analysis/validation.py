@@ -2,12 +2,21 @@
 
 from __future__ import annotations
 
+import math
+import numbers
 from collections.abc import Iterable
-from typing import TypeVar
+from typing import Any, TypeVar
 
 import numpy as np
 
-__all__ = ["ModelValidityWarning", "finite_array", "finite_scalar", "check_range", "check_choice"]
+__all__ = [
+    "ModelValidityWarning",
+    "finite_array",
+    "finite_scalar",
+    "real_number",
+    "check_range",
+    "check_choice",
+]
 
 
 class ModelValidityWarning(UserWarning):
@@ -25,6 +34,20 @@ def finite_array(value, name: str) -> np.ndarray:
         where = "" if array.ndim == 0 else f" at index {tuple(int(i) for i in np.argwhere(bad)[0])}"
         raise ValueError(f"{name} must be finite; got {array[bad].flat[0]}{where}")
     return array
+
+
+def real_number(value, name: str) -> float:
+    """``value`` as a finite float, strictly: TypeError naming ``name`` for anything that is not
+    a real number (a string such as "50" or a bool included), ValueError for NaN or infinity."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number; got {value!r}")
+    try:
+        value = float(value)
+    except OverflowError:
+        raise ValueError(f"{name} must be finite; got an integer beyond float range") from None
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be finite; got {value}")
+    return value
 
 
 def finite_scalar(value, name: str) -> float:
@@ -50,8 +73,8 @@ def check_range(
 ) -> Checked:
     """Raise ``ValueError`` naming ``name`` if any element of ``array`` is outside the interval;
     return ``array`` itself."""
-    too_low = np.zeros(np.shape(array), bool)
-    too_high = np.zeros(np.shape(array), bool)
+    too_low: Any = np.zeros(np.shape(array), bool)
+    too_high: Any = np.zeros(np.shape(array), bool)
     if low is not None:
         too_low = array < low if low_inclusive else array <= low
     if high is not None:

@@ -1,0 +1,208 @@
+"""One physics suite run over every engine (as py-ballisticcalc runs its suite once per engine).
+
+Each engine flies the same :class:`~harp_analysis.launch.Launch` and returns the same table and
+metadata. Checked against physics, not against any engine's earlier output:
+
+- in vacuum every engine flies the closed-form Kepler conic (:mod:`harp_analysis.kepler`);
+- in vacuum the specific energy v^2/2 - GM/r is conserved along the flight;
+- a cross wind from the left mirrors one from the right (the engines that model wind);
+- the result converges as the engine's numerical tolerance tightens.
+"""
+
+import dataclasses
+import math
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+from harp_analysis import appendix_a, earth, eci, kepler, mks, mlt, sixdof, threedof
+from harp_analysis.launch import HP_CHAPTER_2, chapter_2
+from harp_analysis.projectiles import HP
+from harp_analysis.trajectory import BASE_COLUMNS, METADATA_KEYS
+from harp_analysis.validation import ModelValidityWarning
+
+
+def _eci_table(launch, n_terms=3):
+    """The ECI MKS on a non-rotating Earth flies exactly the MKS: its table is the MKS's."""
+    solution = eci.solution_for_launch(launch, n_terms=n_terms, warn=False)
+    table = mks.simulate_mks(launch, n_terms=n_terms, warn=False)
+    assert solution.apogee_altitude() == pytest.approx(table.attrs["apogee_altitude_m"], abs=1e-6)
+    return table
+
+
+@dataclass(frozen=True)
+class Engine:
+    name: str
+    fly: Callable
+    tolerances: tuple  # numerical options, loosest first, for the convergence check
+    vacuum_tolerance_m: float  # how close to the conic its numerics allow
+    has_wind: bool = True
+    full_table: bool = True
+    energy_tolerance: float = 1e-9  # relative
+
+
+ENGINES = [
+    Engine(
+        "3DOF",
+        threedof.simulate_3dof,
+        ({"rtol": 1e-6}, {"rtol": 1e-8}, {"rtol": 1e-10}, {"rtol": 1e-12}),
+        1e-3,
+    ),
+    Engine(
+        "6DOF",
+        sixdof.simulate_6dof,
+        ({"rtol": 1e-6}, {"rtol": 1e-8}, {"rtol": 1e-10}, {"rtol": 1e-12}),
+        1e-3,
+    ),
+    Engine(
+        "MLT",
+        mlt.simulate_mlt,
+        (
+            {"segment_length_m": 4000.0},
+            {"segment_length_m": 2000.0},
+            {"segment_length_m": 1000.0},
+            {"segment_length_m": 250.0},
+        ),
+        50.0,
+        energy_tolerance=1e-8,  # gravity frozen over each segment
+    ),
+    Engine(
+        "MKS",
+        lambda launch, **o: mks.simulate_mks(launch, warn=False, **o),
+        ({"n_terms": 1}, {"n_terms": 2}, {"n_terms": 3}, {"n_terms": 8}),
+        1e-3,
+        has_wind=False,
+    ),
+    Engine(
+        "ECI MKS",
+        _eci_table,
+        ({"n_terms": 1}, {"n_terms": 2}, {"n_terms": 3}, {"n_terms": 8}),
+        1e-3,
+        has_wind=False,
+    ),
+    Engine(
+        "Appendix A",
+        appendix_a.simulate_appendix_a,
+        ({"dt_s": 0.08}, {"dt_s": 0.04}, {"dt_s": 0.02}, {"dt_s": 0.005}),
+        300.0,
+        has_wind=False,
+        full_table=False,
+        # its speed is a backward difference half a step old: an error of order g dt V
+        energy_tolerance=1e-5,
+    ),
+]
+VACUUM = chapter_2(
+    HP,
+    atmosphere="vacuum",
+    cross_wind_m_s=0.0,
+    spin_rad_s=0.0,
+    speed_m_s=1500.0,
+    elevation_deg=45.0,
+)
+
+
+def _fly(engine, launch, **options):
+    if engine.name == "Appendix A" and "dt_s" not in options:
+        options["dt_s"] = 0.01
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelValidityWarning)
+        return engine.fly(launch, **options)
+
+
+@pytest.fixture(scope="module", params=ENGINES, ids=lambda e: e.name)
+def engine(request):
+    return request.param
+
+
+@pytest.fixture(scope="module")
+def vacuum_flight(engine):
+    return _fly(engine, VACUUM)
+
+
+def test_same_table_and_metadata(engine, vacuum_flight):
+    columns = (
+        BASE_COLUMNS
+        if engine.full_table
+        else (
+            "time_s",
+            "altitude_m",
+            "ground_range_m",
+            "cross_range_m",
+            "speed_m_s",
+            "specific_angular_momentum_m2_s",
+        )
+    )
+    assert set(columns) <= set(vacuum_flight.columns)
+    assert set(METADATA_KEYS) <= set(vacuum_flight.attrs)
+    assert vacuum_flight.attrs["launch"] == VACUUM
+    assert vacuum_flight.attrs["stop_reason"] == "impact" and vacuum_flight.attrs["impact"]
+
+
+def test_vacuum_flight_is_the_kepler_conic(engine, vacuum_flight):
+    conic = kepler.ballistic_conic(VACUUM.speed_m_s, VACUUM.elevation_rad)
+    attrs = vacuum_flight.attrs
+    tolerance = engine.vacuum_tolerance_m
+    assert attrs["apogee_altitude_m"] == pytest.approx(
+        float(conic.apogee_altitude_m), abs=tolerance
+    )
+    assert attrs["range_m"] == pytest.approx(float(conic.ground_range_m), abs=tolerance)
+    if engine.full_table:
+        assert attrs["time_of_flight_s"] == pytest.approx(float(conic.time_of_flight_s), abs=1e-3)
+
+
+def test_vacuum_energy_is_conserved(engine, vacuum_flight):
+    radius = vacuum_flight.altitude_m + earth.RADIUS_M
+    energy = 0.5 * vacuum_flight.speed_m_s**2 - earth.GM_M3_S2 / radius
+    launch = 0.5 * VACUUM.speed_m_s**2 - earth.GM_M3_S2 / earth.RADIUS_M
+    assert np.max(np.abs(energy - launch)) <= engine.energy_tolerance * abs(launch)
+
+
+def _mirrored(launch):
+    """The launch seen in a mirror through its vertical plane: the wind from the other side, the
+    spin the other way, and a finned projectile's fins canted the other way (they roll it)."""
+    projectile = launch.projectile
+    if projectile.aero is not None:
+        aero = dataclasses.replace(projectile.aero, cldd=tuple(-c for c in projectile.aero.cldd))
+        projectile = dataclasses.replace(projectile, name=f"{projectile.name} mirrored", aero=aero)
+    return launch.but(
+        projectile=projectile, cross_wind_m_s=-launch.cross_wind_m_s, spin_rad_s=-launch.spin_rad_s
+    )
+
+
+def test_cross_wind_from_the_left_mirrors_one_from_the_right(engine):
+    left = _fly(engine, HP_CHAPTER_2)
+    right = _fly(engine, _mirrored(HP_CHAPTER_2))
+    # equal to the integrators' tolerance (rtol 1e-9 of a 240 km flight)
+    assert left.attrs["range_m"] == pytest.approx(right.attrs["range_m"], abs=1e-3)
+    assert left.attrs["cross_range_m"] == pytest.approx(-right.attrs["cross_range_m"], abs=1e-3)
+    if engine.has_wind:
+        assert left.attrs["cross_range_m"] > 10.0  # blown toward positive cross range
+    else:
+        assert left.attrs["cross_range_m"] == pytest.approx(0.0, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    "fly",
+    [
+        mks.for_launch,
+        eci.correction_for_launch,
+        lambda launch: appendix_a.simulate_appendix_a(launch, 0.05),
+    ],
+    ids=["MKS", "ECI MKS", "Appendix A"],
+)
+def test_engines_without_wind_say_they_leave_it_out(fly):
+    with pytest.warns(ModelValidityWarning, match="cross_wind_m_s"):
+        fly(HP_CHAPTER_2)
+
+
+def test_converges_as_the_tolerance_tightens(engine):
+    launch = chapter_2(HP)
+    apogees = [
+        _fly(engine, launch, **options).attrs["apogee_altitude_m"] for options in engine.tolerances
+    ]
+    differences = [abs(a - apogees[-1]) for a in apogees[:-1]]
+    assert differences[0] > differences[-1]
+    assert all(math.isfinite(a) for a in apogees)

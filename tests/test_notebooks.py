@@ -1,0 +1,70 @@
+"""Notebooks are driven from one parameters cell, and every engine flies the launch built there.
+
+nbmake executes every notebook as committed (``make test``); here notebook 04 runs with changed
+parameters, and a last cell checks that the 3DOF, 6DOF, MLT and MKS all flew the changed launch.
+"""
+
+import os
+
+import nbformat
+import pytest
+from nbclient import NotebookClient
+
+from harp_analysis import paths
+
+NOTEBOOKS = sorted(paths.NOTEBOOKS_DIR.glob("*.ipynb"))
+CHANGED = """projectile = "LP"
+elevation_deg = 60.0
+speed_m_s = 2100.0
+cross_wind_m_s = -3.0
+baseline_elevations_deg = (45.0,)
+"""
+CHECK = """
+import numpy as np
+from harp_analysis.projectiles import LP
+
+assert launch.projectile == LP and launch.elevation_deg == 60.0
+assert launch.speed_m_s == 2100.0 and launch.cross_wind_m_s == -3.0
+for table in (flight3, flight6, flight_mlt, mks_table):
+    assert table.attrs["launch"] == launch, table.attrs["engine"]
+assert {t.attrs["engine"] for t in (flight3, flight6, flight_mlt, mks_table)} == {
+    "3DOF", "6DOF", "MLT", "MKS"}
+assert np.isclose(hp_mks.speed_m_s.item(), 2100.0) and np.isclose(
+    np.degrees(hp_mks.elevation_rad.item()), 60.0)
+assert abs(flight3.attrs["cross_range_m"]) > 1.0  # the changed wind blew the 3DOF aside
+"""
+
+
+def _parameter_cells(notebook):
+    return [c for c in notebook.cells if "parameters" in c.metadata.get("tags", [])]
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
+def test_each_notebook_opens_with_one_parameters_cell(path):
+    notebook = nbformat.read(path, as_version=4)
+    cells = _parameter_cells(notebook)
+    code = [c for c in notebook.cells if c.cell_type == "code"]
+    assert len(cells) == 1 and code[0] is cells[0]
+
+
+def test_notebook_04_flies_every_engine_on_the_changed_launch(tmp_path):
+    notebook = nbformat.read(paths.NOTEBOOKS_DIR / "04_mks_vs_simulation.ipynb", as_version=4)
+    _parameter_cells(notebook)[0].source = CHANGED
+    # run through Fig 4.6, the figures every engine draws, then check what they flew
+    last = next(i for i, c in enumerate(notebook.cells) if 'save_figure(fig, "4.6")' in c.source)
+    notebook.cells = [*notebook.cells[: last + 1], nbformat.v4.new_code_cell(CHECK)]
+    client = NotebookClient(
+        notebook,
+        timeout=600,
+        kernel_name="python3",
+        resources={"metadata": {"path": str(paths.NOTEBOOKS_DIR)}},
+    )
+    client.execute(env={**os.environ, "HARP_ANALYSIS_FIGURES_DIR": str(tmp_path)})
+    assert (tmp_path / "fig_4_1.png").is_file()
+
+
+def test_figures_go_to_a_scratch_folder_unless_asked(monkeypatch):
+    monkeypatch.delenv("HARP_ANALYSIS_FIGURES_DIR", raising=False)
+    assert paths.FIGURES_DIR != paths.COMMITTED_FIGURES_DIR
+    monkeypatch.setenv("HARP_ANALYSIS_FIGURES_DIR", str(paths.COMMITTED_FIGURES_DIR))
+    assert paths.FIGURES_DIR == paths.COMMITTED_FIGURES_DIR
