@@ -344,7 +344,7 @@ def mks_apogee(
     mass_kg,
     area_m2,
     k_per_m=atmosphere.TEXT_DECAY_CONSTANT_PER_M,
-    rho0=1.225,
+    rho0=atmosphere.SEA_LEVEL_DENSITY_KG_M3,
     r0=earth.RADIUS_M,
     gm=earth.GM_M3_S2,
 ):

@@ -14,7 +14,6 @@ import numpy as np
 import pandas as pd
 
 from . import earth
-from .atmosphere import get_atmosphere
 from .caching import cached_copies
 from .launch import Launch, chapter_2
 from .mlt import simulate_mlt
@@ -103,15 +102,20 @@ def launch_drag_to_gravity(
 
     ``gravity_m_s2`` defaults to the simulations' GM/R^2 (9.7987 m/s^2).
     """
-    p = get_projectile(projectile)
-    air = get_atmosphere(atmosphere)
+    launch = reference_launch(projectile).but(atmosphere=atmosphere)
+    p = launch.projectile
     g = (
         earth.surface_gravity_m_s2()
         if gravity_m_s2 is None
         else finite_scalar(gravity_m_s2, "gravity_m_s2")
     )
-    mach = p.launch_speed_m_s / air.speed_of_sound(0.0)
-    drag = 0.5 * air.density(0.0) * p.launch_speed_m_s**2 * p.drag_law(mach) * p.reference_area_m2
+    drag = (
+        0.5
+        * launch.surface_density_kg_m3
+        * launch.speed_m_s**2
+        * launch.launch_drag_coefficient
+        * p.reference_area_m2
+    )
     return float(drag / (p.mass_kg * g))
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from .atmosphere import SEA_LEVEL_DENSITY_KG_M3
 from .validation import check_choice, check_range, finite_array
 
 __all__ = ["LaunchSite", "BARBADOS", "YUMA", "dms_to_deg", "get_site"]
@@ -35,7 +36,7 @@ BARBADOS = LaunchSite(
     # 13.077222 deg; the text rounds it to 13.0772 deg in eq. (6.16).
     latitude_rad=math.radians(dms_to_deg(13, 4, 38)),
     gun_bearing_rad=math.radians(109.0),
-    surface_density_kg_m3=1.225,
+    surface_density_kg_m3=SEA_LEVEL_DENSITY_KG_M3,
     elevation_rad=math.radians(85.0),
     source=(
         "Stutz (2013): latitude 13°4'38\" N, Ch. 6 C before eq. (6.16); bearing 109° true, "
