@@ -28,7 +28,7 @@ from . import earth
 from .atmosphere import get_atmosphere
 from .launch import Launch
 from .trajectory import describe, surface_ranges
-from .validation import check_range, finite_scalar
+from .validation import check_range, finite_scalar, positive_scalar
 
 __all__ = ["simulate_appendix_a"]
 
@@ -56,13 +56,7 @@ def simulate_appendix_a(launch: Launch, dt_s: float, *, max_time_s: float = 3000
     dt = check_range(
         finite_scalar(dt_s, "dt_s"), "dt_s", low=0.0, low_inclusive=False, high=1.0, unit="s"
     )
-    max_time_s = check_range(
-        finite_scalar(max_time_s, "max_time_s"),
-        "max_time_s",
-        low=0.0,
-        low_inclusive=False,
-        unit="s",
-    )
+    max_time_s = positive_scalar(max_time_s, "max_time_s", "s")
     projectile, speed = launch.projectile, launch.speed_m_s
     lat, lon = launch.latitude_rad, math.radians(launch.longitude_deg)
     az, el = launch.bearing_rad, launch.elevation_rad

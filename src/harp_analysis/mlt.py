@@ -104,7 +104,13 @@ from . import earth, kepler
 from .launch import Launch
 from .sixdof import DENSITY_ALTITUDES, RigidBodyModel, rigid_body_launch, trajectory_table
 from .trajectory import describe
-from .validation import ModelValidityWarning, check_choice, check_range, finite_scalar
+from .validation import (
+    ModelValidityWarning,
+    check_choice,
+    check_range,
+    finite_scalar,
+    positive_scalar,
+)
 
 __all__ = [
     "SEGMENT_LENGTH_M",
@@ -432,29 +438,11 @@ def simulate_mlt(
     model = rigid_body_launch(launch, "MLT", density_altitude)
     projectile = launch.projectile
     elevation, speed, spin = launch.elevation_deg, launch.speed_m_s, launch.spin_rad_s
-    length_m = check_range(
-        finite_scalar(segment_length_m, "segment_length_m"),
-        "segment_length_m",
-        low=0.0,
-        low_inclusive=False,
-        unit="m",
-    )
+    length_m = positive_scalar(segment_length_m, "segment_length_m", "m")
     check_choice(coefficients_at, "coefficients_at", COEFFICIENT_POINTS)
     check_choice(gravity, "gravity", GRAVITY_MODELS)
-    max_time = check_range(
-        finite_scalar(max_time_s, "max_time_s"),
-        "max_time_s",
-        low=0.0,
-        low_inclusive=False,
-        unit="s",
-    )
-    step = check_range(
-        finite_scalar(output_step_s, "output_step_s"),
-        "output_step_s",
-        low=0.0,
-        low_inclusive=False,
-        unit="s",
-    )
+    max_time = positive_scalar(max_time_s, "max_time_s", "s")
+    step = positive_scalar(output_step_s, "output_step_s", "s")
     length = length_m / model.d
     uniform = gravity == "uniform"
     try:  # no flight, with or without drag, travels farther than a drag-free one at V0
@@ -634,20 +622,8 @@ def simulate_linear_theory_limit(
     if the flight is cut off before it)."""
     model = rigid_body_launch(launch, "linear-theory limit", density_altitude)
     rtol = check_range(finite_scalar(rtol, "rtol"), "rtol", low=1e-13, high=1e-3)
-    max_time = check_range(
-        finite_scalar(max_time_s, "max_time_s"),
-        "max_time_s",
-        low=0.0,
-        low_inclusive=False,
-        unit="s",
-    )
-    step = check_range(
-        finite_scalar(output_step_s, "output_step_s"),
-        "output_step_s",
-        low=0.0,
-        low_inclusive=False,
-        unit="s",
-    )
+    max_time = positive_scalar(max_time_s, "max_time_s", "s")
+    step = positive_scalar(output_step_s, "output_step_s", "s")
 
     def impact(t, y):
         return _altitude(y)

@@ -94,7 +94,7 @@ from .atmosphere import AtmosphereModel, get_atmosphere
 from .launch import Launch
 from .projectiles import Projectile, check_rigid_body
 from .trajectory import BASE_COLUMNS, describe, flight_path_angle, surface_ranges
-from .validation import check_choice, check_range, finite_array, finite_scalar
+from .validation import check_choice, check_range, finite_array, finite_scalar, positive_scalar
 
 __all__ = [
     "STATE_NAMES",
@@ -535,20 +535,8 @@ def simulate_6dof(
     model = rigid_body_launch(launch, "6DOF", density_altitude)
     projectile = launch.projectile
     rtol = check_range(finite_scalar(rtol, "rtol"), "rtol", low=1e-13, high=1e-3)
-    max_time = check_range(
-        finite_scalar(max_time_s, "max_time_s"),
-        "max_time_s",
-        low=0.0,
-        low_inclusive=False,
-        unit="s",
-    )
-    step = check_range(
-        finite_scalar(output_step_s, "output_step_s"),
-        "output_step_s",
-        low=0.0,
-        low_inclusive=False,
-        unit="s",
-    )
+    max_time = positive_scalar(max_time_s, "max_time_s", "s")
+    step = positive_scalar(output_step_s, "output_step_s", "s")
     elevation, speed, spin = launch.elevation_deg, launch.speed_m_s, launch.spin_rad_s
 
     def impact(t, y):

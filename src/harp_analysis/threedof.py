@@ -36,7 +36,7 @@ from .trajectory import (
     rotate_about_axis,
     surface_ranges,
 )
-from .validation import check_range, finite_scalar
+from .validation import check_range, finite_scalar, positive_scalar
 
 __all__ = ["simulate_3dof", "simulate_3dof_batch"]
 
@@ -80,15 +80,7 @@ def _numerics(rtol, max_time_s):
     rtol = float(
         check_range(finite_scalar(rtol, "rtol"), "rtol", low=0.0, low_inclusive=False, high=1e-3)
     )
-    max_time_s = float(
-        check_range(
-            finite_scalar(max_time_s, "max_time_s"),
-            "max_time_s",
-            low=0.0,
-            low_inclusive=False,
-            unit="s",
-        )
-    )
+    max_time_s = float(positive_scalar(max_time_s, "max_time_s", "s"))
     return rtol, max_time_s
 
 
@@ -229,13 +221,7 @@ def simulate_3dof(
             f"launch must be a Launch (harp_analysis.launch.Launch); got {type(launch).__name__} "
             "(simulate_3dof_batch flies a sequence of them)"
         )
-    step = check_range(
-        finite_scalar(output_step_s, "output_step_s"),
-        "output_step_s",
-        low=0.0,
-        low_inclusive=False,
-        unit="s",
-    )
+    step = positive_scalar(output_step_s, "output_step_s", "s")
     launches = _launches(launch)
     rtol, max_time_s = _numerics(rtol, max_time_s)
     solution, dynamics, up, downrange = _run(launches, rtol, max_time_s)

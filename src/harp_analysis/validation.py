@@ -14,6 +14,7 @@ __all__ = [
     "finite_array",
     "finite_scalar",
     "real_number",
+    "positive_scalar",
     "check_range",
     "check_choice",
 ]
@@ -48,6 +49,12 @@ def real_number(value, name: str) -> float:
     if not math.isfinite(value):
         raise ValueError(f"{name} must be finite; got {value}")
     return value
+
+
+def positive_scalar(value, name: str, unit: str = "") -> float:
+    """``value`` as one finite float > 0, or an error naming ``name`` (a time span, a step, a
+    tolerance: the engines' numerical options)."""
+    return check_range(finite_scalar(value, name), name, low=0.0, low_inclusive=False, unit=unit)
 
 
 def finite_scalar(value, name: str) -> float:
