@@ -16,9 +16,10 @@ $(STAMP): environment.txt pyproject.toml
 	touch $@
 
 # Figures go to the committed figures/ only here; notebooks run elsewhere write to a scratch
-# folder (harp_analysis.paths.FIGURES_DIR).
+# folder (harp_analysis.paths.FIGURES_DIR). `make figures FIG=4.11` runs only its notebook.
 figures: $(STAMP)
-	HARP_ANALYSIS_FIGURES_DIR="$(CURDIR)/figures" $(BIN)/python -m harp_analysis.build
+	HARP_ANALYSIS_FIGURES_DIR="$(CURDIR)/figures" $(BIN)/python -m harp_analysis.build \
+		$(if $(FIG),--figure $(FIG))
 
 # Style (ruff), types (mypy) and the package's layers (import-linter, contracts in pyproject.toml).
 lint: $(STAMP)
@@ -28,8 +29,11 @@ lint: $(STAMP)
 	$(BIN)/lint-imports
 
 # Notebooks under test save their figures to a scratch folder, never over the committed ones.
+# The figures they draw are then compared with the committed ones, to an image tolerance.
 test: lint
-	HARP_ANALYSIS_FIGURES_DIR="$$(mktemp -d)" $(BIN)/python -m pytest -n 2 tests --nbmake notebooks
+	scratch="$$(mktemp -d)" && \
+	HARP_ANALYSIS_FIGURES_DIR="$$scratch" $(BIN)/python -m pytest -n 2 tests --nbmake notebooks && \
+	HARP_ANALYSIS_REGENERATED_FIGURES="$$scratch" $(BIN)/python -m pytest -q tests/test_figure_images.py
 
 benchmark: $(STAMP)
 	$(BIN)/python benchmarks/bench_atmosphere.py

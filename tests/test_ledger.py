@@ -1,5 +1,7 @@
 """Every row of the claims ledger is recomputed by the package and its verdict checked."""
 
+import dataclasses
+
 import pytest
 
 from harp_analysis import ledger
@@ -106,3 +108,30 @@ def test_render_claims(tmp_path):
     text = ledger.render_claims(tmp_path / "CLAIMS.md").read_text()
     for claim in CLAIMS:
         assert f"`{claim.id}`" in text
+
+
+@pytest.mark.parametrize(
+    "source, figures",
+    [
+        ("Ch. 6 C, Fig 6.5", ("6.5",)),
+        ("Ch. 4 C, Figs 4.11, 4.15", ("4.11", "4.15")),
+        ("Ch. 5 C, Figs 5.4-5.9", tuple(f"5.{n}" for n in range(4, 10))),
+        ("Table 4.1, eq 3.22", ("Table 4.1",)),
+        ("Ch. 2 A and Fig 2.2 and 2.3", ("2.2", "2.3")),
+        ("Ch. 3 B", ()),
+    ],
+)
+def test_claims_are_tied_to_the_figures_their_source_names(source, figures):
+    claim = dataclasses.replace(ledger.load_claims()[0], source=source)
+    assert claim.figures == figures
+    assert dataclasses.replace(claim, ties=("6.6",)).figures == ("6.6",)
+
+
+def test_claims_table_survives_a_bar_in_a_cell(tmp_path):
+    text = ledger.render_claims(tmp_path / "CLAIMS.md").read_text()
+    rows = [line for line in text.splitlines() if line.startswith("| <a id=")]
+    assert len(rows) == len(ledger.load_claims())
+    header = next(line for line in text.splitlines() if line.startswith("| id |"))
+    cells = header.count(" | ")
+    assert all(row.replace("\\|", "").count(" | ") == cells for row in rows)
+    assert "**close**: outside the tolerance" in text

@@ -16,10 +16,11 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from . import paths
+from .gallery import render_gallery
 from .ledger import render_claims
-from .registry import render_gallery
+from .registry import get_entry
 
-__all__ = ["notebooks", "execute_notebook", "main"]
+__all__ = ["notebooks", "notebooks_for", "execute_notebook", "main"]
 
 
 def notebooks() -> list[Path]:
@@ -50,12 +51,30 @@ def execute_notebook(path: Path, figures_dir: Path | None = None, timeout_s: int
     return time.perf_counter() - start
 
 
+def notebooks_for(numbers: list[str]) -> list[Path]:
+    """The notebooks that draw figures ``numbers`` (registry numbers, e.g. "4.11")."""
+    chosen = set()
+    for number in numbers:
+        entry = get_entry(number)
+        if not entry.notebook:
+            raise ValueError(f"figure {number!r} is drawn by no notebook ({entry.status})")
+        chosen.add(paths.NOTEBOOKS_DIR / entry.notebook)
+    return sorted(chosen)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--jobs", type=int, default=2, help="notebooks run at once (default 2)")
+    parser.add_argument(
+        "--figure",
+        action="append",
+        default=[],
+        help="regenerate only this figure's notebook (repeatable), e.g. 4.11",
+    )
     args = parser.parse_args(argv)
+    chosen = notebooks_for(args.figure) if args.figure else notebooks()
     with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-        timings = dict(zip(notebooks(), pool.map(execute_notebook, notebooks())))
+        timings = dict(zip(chosen, pool.map(execute_notebook, chosen)))
     for path, seconds in timings.items():
         print(f"{seconds:6.1f} s  {path.name}")
     for written in (render_gallery(), render_claims()):

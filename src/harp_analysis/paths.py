@@ -33,6 +33,7 @@ __all__ = [  # noqa: F822 (the checkout folders are served by __getattr__ below)
     "COMMITTED_FIGURES_DIR",
     "NOTEBOOKS_DIR",
     "REGISTRY_DIR",
+    "write_atomically",
 ]
 
 HARP_DATA_DIR = Path(str(resources.files("harp_analysis") / "_data" / "harp"))
@@ -52,6 +53,24 @@ _IN_CHECKOUT = {
     "NOTEBOOKS_DIR": lambda root: root / "notebooks",
     "REGISTRY_DIR": lambda root: root / "registry",
 }
+
+
+def write_atomically(path: Path, write) -> Path:
+    """Call ``write(temporary_path)`` and rename the result onto ``path``, so a reader never
+    sees a half-written file (a figure, the gallery, the ledger), even if the run is stopped."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    handle, temporary = tempfile.mkstemp(
+        dir=path.parent, prefix=f".{path.stem}-", suffix=path.suffix
+    )
+    os.close(handle)
+    try:
+        write(Path(temporary))
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+    return path
 
 
 def __getattr__(name: str) -> Path:

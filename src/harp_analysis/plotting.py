@@ -1,4 +1,20 @@
-"""Figure helpers: one house style and one deterministic way to save a figure by its number."""
+"""Figure helpers: one house style, one meaning per colour, one deterministic way to save.
+
+Styles. Series are told apart without colour, and each colour means one thing across the set
+(:func:`style`):
+
+- the model or engine has a colour of the Okabe-Ito palette (safe for colour-blind readers)
+  and a line style: 3DOF solid blue, 6DOF dashed orange, MLT dash-dot green, MKS dotted
+  vermillion; measured data are black markers, the text's values grey;
+- the projectile has a marker: HP circle, LP square, the baseline cone triangle;
+- the gun elevation has a shade of reddish purple, light to dark from 30 to 85 deg, and a
+  marker of its own; such curves are also labelled directly (:func:`label_lines`).
+
+Saving. :func:`save_figure` writes each figure twice, a vector PDF and a 300 dpi PNG, under
+the registry's name, sized as drawn (:data:`FULL_WIDTH_IN`, :data:`COLUMN_WIDTH_IN`), with no
+software or time stamps, through a temporary file renamed into place: an interrupted run never
+leaves a truncated figure.
+"""
 
 from __future__ import annotations
 
@@ -8,15 +24,34 @@ from typing import Any
 import matplotlib.pyplot as plt
 from matplotlib.figure import Figure
 
+from .paths import write_atomically
 from .registry import figure_file
 
-__all__ = ["HOUSE_STYLE", "DPI", "new_figure", "save_figure", "save_table"]
+__all__ = [
+    "HOUSE_STYLE",
+    "DPI",
+    "FULL_WIDTH_IN",
+    "COLUMN_WIDTH_IN",
+    "OKABE_ITO",
+    "ENGINE_STYLES",
+    "PROJECTILE_MARKERS",
+    "style",
+    "elevation_style",
+    "label_lines",
+    "new_figure",
+    "save_figure",
+    "save_table",
+]
 
-DPI = 150
+DPI = 300
+#: A journal page's text width and a column's (inches).
+FULL_WIDTH_IN, COLUMN_WIDTH_IN = 6.5, 3.4
 HOUSE_STYLE: dict[str, Any] = {
-    "figure.figsize": (6.4, 4.4),
+    "figure.figsize": (FULL_WIDTH_IN, 4.2),
     "font.family": "DejaVu Sans",  # bundled with matplotlib: identical glyphs on every machine
+    "mathtext.fontset": "dejavusans",
     "font.size": 10,
+    "legend.fontsize": 8.5,
     "axes.grid": True,
     "grid.alpha": 0.35,
     "axes.spines.top": False,
@@ -26,32 +61,121 @@ HOUSE_STYLE: dict[str, Any] = {
     "savefig.dpi": DPI,
     "savefig.bbox": "tight",
     "path.simplify": False,
+    "pdf.fonttype": 42,  # TrueType in the PDF: editable text
 }
-# PNG metadata keys matplotlib would otherwise fill with its version string.
-_NO_METADATA = {"Software": None}
+#: Okabe and Ito's colour-blind-safe palette.
+OKABE_ITO = {
+    "black": "#000000",
+    "orange": "#E69F00",
+    "sky blue": "#56B4E9",
+    "bluish green": "#009E73",
+    "yellow": "#F0E442",
+    "blue": "#0072B2",
+    "vermillion": "#D55E00",
+    "reddish purple": "#CC79A7",
+    "grey": "#7F7F7F",
+}
+#: Each model's colour and line style, the same in every figure.
+ENGINE_STYLES = {
+    "3DOF": {"color": OKABE_ITO["blue"], "linestyle": "-"},
+    "6DOF": {"color": OKABE_ITO["orange"], "linestyle": "--"},
+    "MLT": {"color": OKABE_ITO["bluish green"], "linestyle": "-."},
+    "MKS": {"color": OKABE_ITO["vermillion"], "linestyle": ":"},
+    "measured": {"color": OKABE_ITO["black"], "linestyle": "none", "marker": "o"},
+    "text": {"color": OKABE_ITO["grey"], "linestyle": "none", "marker": "x"},
+}
+PROJECTILE_MARKERS = {"HP": "o", "LP": "s", "baseline": "^"}
+_ELEVATION_MARKERS = ("o", "s", "^", "D", "v", "P")
+_PURPLES = ("#E7B5D3", "#CC79A7", "#9B4D7C", "#5E2A4B", "#3A1A2E", "#1F0E18")
+
+
+def style(
+    engine: str | None = None, projectile: str | None = None, every: int | None = None
+) -> dict:
+    """Line keywords for a series: the ``engine``'s colour and line style, the
+    ``projectile``'s marker (every ``every`` points; default about a dozen per line)."""
+    keywords: dict[str, Any] = {}
+    if engine is not None:
+        key = "MKS" if engine.startswith("MKS") or engine.startswith("ECI") else engine
+        keywords.update(ENGINE_STYLES[key])
+    if projectile is not None:
+        keywords.update(
+            marker=PROJECTILE_MARKERS[projectile],
+            markersize=4,
+            markevery=every or 0.08,
+            markerfacecolor="none",
+        )
+    return keywords
+
+
+def elevation_style(elevation_deg: float, elevations_deg) -> dict:
+    """Keywords for the curve of ``elevation_deg`` among ``elevations_deg``: a shade of one hue
+    (darker, higher) and a marker of its own, so it reads in grey and without colour."""
+    order = sorted(elevations_deg).index(elevation_deg)
+    shades = _PURPLES[: max(len(elevations_deg), 2)]
+    return {
+        "color": shades[order],
+        "marker": _ELEVATION_MARKERS[order],
+        "markersize": 4,
+        "markevery": 0.1,
+    }
+
+
+def label_lines(ax, lines, labels, *, at: float = 0.85, fontsize: float = 8.0):
+    """Label each of ``lines`` directly, next to the point ``at`` (0-1) along its data."""
+    for line, label in zip(lines, labels):
+        x, y = line.get_xdata(), line.get_ydata()
+        if len(x) == 0:
+            continue
+        i = min(int(at * (len(x) - 1)), len(x) - 1)
+        ax.annotate(
+            label,
+            (x[i], y[i]),
+            textcoords="offset points",
+            xytext=(3, 3),
+            color=line.get_color(),
+            fontsize=fontsize,
+        )
 
 
 def new_figure(nrows: int = 1, ncols: int = 1, **kwargs):
-    """``plt.subplots`` in the house style; returns ``(fig, axes)``."""
-    with plt.rc_context(HOUSE_STYLE):  # type: ignore[arg-type]  # keys checked at run time
-        return plt.subplots(nrows, ncols, **kwargs)
+    """``plt.subplots`` in the house style, which stays in force for what is drawn on the
+    figure afterwards (legends, lines); returns ``(fig, axes)``."""
+    plt.rcParams.update(HOUSE_STYLE)  # type: ignore[arg-type]  # keys checked at run time
+    return plt.subplots(nrows, ncols, **kwargs)
+
+
+# Metadata matplotlib would otherwise fill with its version and the time.
+_NO_METADATA = {
+    ".png": {"Software": None},
+    ".pdf": {"Creator": None, "Producer": None, "CreationDate": None},
+}
 
 
 def save_figure(fig, number: str) -> Path:
-    """Save ``fig`` as dissertation figure ``number`` (e.g. ``"2.1"`` -> ``figures/fig_2_1.png``).
+    """Save ``fig`` as figure ``number`` (e.g. ``"2.1"`` -> ``figures/fig_2_1.png`` and
+    ``fig_2_1.pdf``); returns the PNG's path.
 
     The file name comes from the figure registry, so only registered figures can be saved.
-    Rendered by Agg whatever the interactive backend (JupyterLab's inline one included), at a
-    fixed dpi, with no software or time stamps: saving the same figure twice gives
-    byte-identical files.
+    Rendered by Agg (PNG, 300 dpi) and the PDF backend whatever the interactive backend, with
+    no software or time stamps: saving the same figure twice gives byte-identical files.
     """
     if not isinstance(fig, Figure):
         raise TypeError(f"fig must be a matplotlib Figure; got {type(fig).__name__}")
-    path = figure_file(number)
-    path.parent.mkdir(parents=True, exist_ok=True)
+    png = figure_file(number)
     with plt.rc_context(HOUSE_STYLE):  # type: ignore[arg-type]  # keys checked at run time
-        fig.savefig(path, dpi=DPI, metadata=_NO_METADATA, backend="agg")
-    return path
+        for path, backend in ((png, "agg"), (png.with_suffix(".pdf"), "pdf")):
+            write_atomically(
+                path,
+                lambda target, path=path, backend=backend: fig.savefig(
+                    target,
+                    dpi=DPI,
+                    metadata=_NO_METADATA[path.suffix],
+                    backend=backend,
+                    format=path.suffix[1:],
+                ),
+            )
+    return png
 
 
 def save_table(frame, number: str, note: str = "") -> Path:
@@ -72,6 +196,5 @@ def save_table(frame, number: str, note: str = "") -> Path:
     for index, row in frame.iterrows():
         cells = (f"{value:.5g}" if isinstance(value, float) else str(value) for value in row)
         lines.append(f"| {index} | " + " | ".join(cells) + " |")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text("\n".join(lines) + "\n")
-    return path
+    text = "\n".join(lines) + "\n"
+    return write_atomically(path, lambda target: target.write_text(text))
