@@ -14,6 +14,12 @@ numbers (:func:`verdict_problems`), so a verdict cannot silently go stale:
 Tolerances are absolute in the row's unit, or relative when ``tolerance_kind = "relative"``.
 A claim that is a bound ("less than 1 %", "over 4 degrees") sets ``bound = "upper"`` or
 ``"lower"``: only a computed value on the wrong side of the text's counts as a deviation.
+
+Every row also carries ``expected = [low, high]``, the range its computed value is expected to
+stay in whatever the verdict (:func:`range_problem`): a regression guard, so a change that moves
+a value that does not reproduce is caught too. Optional: ``digits`` (significant digits
+CLAIMS.md prints, :func:`printed_digits`) and ``ties`` (the figures the row is about, where not
+those its ``source`` names; empty for a row that scores a model a figure does not draw).
 """
 
 from __future__ import annotations
@@ -30,6 +36,7 @@ from .registry import load_toml_rows
 
 __all__ = [
     "claims_by_figure",
+    "range_problem",
     "printed_digits",
     "Claim",
     "ClaimResult",
@@ -75,6 +82,7 @@ class Claim:
     digits: int | None = None  # significant digits CLAIMS.md prints; default: what the
     # tolerance resolves, 3 to 6 (see printed_digits)
     ties: tuple[str, ...] | None = None  # the figures it is about, where not its source's
+    expected: tuple[float, float] | None = None  # the range the computed value must stay in
 
     @property
     def figures(self) -> tuple[str, ...]:
@@ -138,6 +146,16 @@ def _claim(raw: dict, position: int, source: Path) -> Claim:
         raise ValueError(f"{where}: compute must read 'module:function', got {raw['compute']!r}")
     if "ties" in raw:
         raw = {**raw, "ties": tuple(raw["ties"])}
+    if "expected" in raw:
+        low_high = raw["expected"]
+        if (
+            not isinstance(low_high, list)
+            or len(low_high) != 2
+            or not all(isinstance(v, int | float) for v in low_high)
+            or not low_high[0] < low_high[1]
+        ):
+            raise ValueError(f"{where}: expected must be [low, high] with low < high")
+        raw = {**raw, "expected": (float(low_high[0]), float(low_high[1]))}
     return Claim(**raw)
 
 
@@ -159,6 +177,18 @@ def evaluate(claim: Claim) -> ClaimResult:
 
 def evaluate_all() -> list[ClaimResult]:
     return [evaluate(claim) for claim in load_claims()]
+
+
+def range_problem(result: ClaimResult) -> str | None:
+    """Why ``result``'s computed value is outside its row's expected range (a regression guard
+    that holds whatever the verdict), or None."""
+    expected = result.claim.expected
+    if expected is None:
+        return "no expected range"
+    low, high = expected
+    if not low <= result.computed <= high:
+        return f"computed {result.computed:.6g} is outside the expected range [{low:g}, {high:g}]"
+    return None
 
 
 def verdict_problems(result: ClaimResult) -> list[str]:
@@ -246,8 +276,8 @@ def render_claims(target: Path | None = None) -> Path:
         ", ".join(f"{n} {verdict}" for verdict, n in counts.items()) + f" ({len(results)} in all).",
         "",
         "| id | source | statement | text | computed | unit | tolerance | close tolerance "
-        "| verdict | explanation |",
-        "|---|---|---|---|---|---|---|---|---|---|",
+        "| expected range | verdict | explanation |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in results:
         c = r.claim
@@ -258,10 +288,12 @@ def render_claims(target: Path | None = None) -> Path:
             return f"{value:g}" if c.tolerance_kind == "absolute" else f"{value:.2%} rel."
 
         text = {"upper": "< ", "lower": "> "}.get(c.bound or "", "") + _number(c.text_value)
+        expected = f"[{c.expected[0]:g}, {c.expected[1]:g}]" if c.expected else "-"
         lines.append(
             f'| <a id="{c.id}"></a>`{c.id}` | {_cell(c.source)} | {_cell(c.statement)} | '
             f"{text} | {_number(r.computed, printed_digits(r))} | {_cell(c.unit)} | "
-            f"{tolerance(c.tolerance)} | {tolerance(c.close_tolerance)} | **{c.verdict}** | "
+            f"{tolerance(c.tolerance)} | {tolerance(c.close_tolerance)} | {expected} | "
+            f"**{c.verdict}** | "
             f"{_cell(c.explanation)} |"
         )
     text = "\n".join(lines) + "\n"
