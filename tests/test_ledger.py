@@ -17,6 +17,8 @@ def test_claim_verdict_matches_computed_value(claim):
         f"{claim.id} ({claim.source}): text {claim.text_value} {claim.unit}, "
         f"computed {result.computed:.6g}: " + "; ".join(problems)
     )
+    # every row guards its value, whatever the verdict
+    assert ledger.range_problem(result) is None, f"{claim.id}: {ledger.range_problem(result)}"
 
 
 def test_ledger_rows_are_complete():
@@ -135,3 +137,30 @@ def test_claims_table_survives_a_bar_in_a_cell(tmp_path):
     cells = header.count(" | ")
     assert all(row.replace("\\|", "").count(" | ") == cells for row in rows)
     assert "**close**: outside the tolerance" in text
+
+
+def _rows(prefix):
+    return [claim for claim in CLAIMS if claim.id.startswith(prefix)]
+
+
+def test_the_two_sites_centres_are_scored_alike():
+    """Ch. 6 C's "within 0.4 km of the center" and Ch. 6 D's "0.44 km from the center" report
+    the same statistic: both are read as values (not bounds), each to one unit of its last
+    printed digit."""
+    rows = _rows("ch6.barbados.mean") + _rows("ch6.yuma.mean")
+    assert len(rows) == 6
+    for claim in rows:
+        decimals = len(repr(claim.text_value).split(".")[1])
+        assert claim.bound is None, claim.id
+        assert claim.tolerance == pytest.approx(10.0**-decimals), claim.id
+
+
+def test_chapter_5_worst_case_is_scored_in_both_airs():
+    """The 3DOF's air is an explicit choice: the worst case is scored in eqs 2.1-2.2's air and
+    in Appendix A's three layers."""
+    airs = {
+        claim.kwargs.get("atmosphere")
+        for claim in CLAIMS
+        if claim.compute == "harp_analysis.rotating:worst_error_at_apogee_km"
+    }
+    assert airs == {"two_segment", "three_layer"}

@@ -1,10 +1,11 @@
 """Acceptance: the HARP apogee statistics of Chapter 6, per model, against the text's numbers.
 
 Thresholds are the text's (Ch. 6 C: Barbados within 0.4 km of the centre, standard deviation
-2.25 km; Ch. 6 D: Yuma 0.44 km from the centre, 2.65 km). Tolerances come from how the text
-prints them: "0.4" to one decimal (a bound, +0.05 km); the two-decimal statistics are Appendix
-E's own truncated (its errors average 0.447 km, standard deviation 2.657 km), so a value
-reproduces in [text - 0.005, text + 0.01) km. The statistics a model does not reproduce are
+2.25 km; Ch. 6 D: Yuma 0.44 km from the centre, 2.65 km), both sites' centres read alike as the
+magnitude of the mean residual (ledger row ch6.barbados.mean). Tolerances come from how the
+text prints them: its statistics are Appendix E's own truncated (its errors average 0.447 km,
+standard deviation 2.657 km), so a value reproduces in [text - half a unit, text + one unit)
+of the last printed digit. The statistics a model does not reproduce are
 strict xfails naming their ledger row, where the reason is argued.
 """
 
@@ -13,7 +14,7 @@ import pytest
 from harp_analysis import harp
 
 TEXT = {  # (site, statistic): (lowest, highest accepted value, km)
-    ("barbados", "abs_mean"): (0.0, 0.45),
+    ("barbados", "abs_mean"): (0.35, 0.5),
     ("barbados", "std"): (2.245, 2.26),
     ("yuma", "mean"): (0.435, 0.45),
     ("yuma", "std"): (2.645, 2.66),
@@ -22,6 +23,7 @@ TEXT = {  # (site, statistic): (lowest, highest accepted value, km)
 DEVIATIONS = {
     ("dissertation", "barbados", "abs_mean"): "ch6.barbados.mean",
     ("dissertation", "barbados", "std"): "ch6.barbados.std",
+    ("consistent", "barbados", "abs_mean"): "ch6.barbados.mean.consistent",
     ("consistent", "barbados", "std"): "ch6.barbados.std.consistent",
     ("consistent", "yuma", "mean"): "ch6.yuma.mean.consistent",
     ("consistent", "yuma", "std"): "ch6.yuma.std.consistent",
