@@ -238,3 +238,258 @@ def test_late_arrival_miss_is_speed_times_delay_plus_the_gravity_drop():
     assert level == pytest.approx(math.hypot(1000.0, 9.81 * 0.125))
     vertical = claims_extra.late_arrival_miss_m(2000.0, 0.5, 90.0, 9.81)
     assert vertical == pytest.approx(1000.0 - 9.81 * 0.125)
+
+
+# === Chapters 1-3 and 7, Appendices: the sweep's rows (second part of claims_extra) ===========
+from scipy import constants  # noqa: E402
+
+from harp_analysis import atmosphere, comparisons, effort, scenarios  # noqa: E402
+from harp_analysis.comparisons import chapter_4_launch  # noqa: E402
+from harp_analysis.launch import HP_CHAPTER_2  # noqa: E402
+from harp_analysis.projectiles import BASELINE, HP  # noqa: E402
+
+
+def test_the_highest_harp_apogee_is_590000_feet():
+    assert claims_extra.max_measured_apogee_km("both") == pytest.approx(590_000 * 0.3048e-3, 1e-4)
+    assert claims_extra.max_measured_apogee_km("barbados") < claims_extra.max_measured_apogee_km()
+
+
+def test_mlt_operations_go_as_the_number_of_segments():
+    one, two = (claims_extra.mlt_over_3dof_orders(length) for length in (1000.0, 2000.0))
+    assert one - two == pytest.approx(math.log10(2.0), abs=0.01)
+    flops = effort.effort_table().flops  # the effort table's MLT flies 1 km segments
+    assert one == pytest.approx(math.log10(flops["MLT"] / flops["3DOF"]), abs=1e-9)
+
+
+def test_mks_apogee_miss_share_against_a_separate_6dof_run():
+    six = scenarios.reference_6dof("HP", "spherical").attrs["apogee_altitude_m"]
+    mks_apogee = float(mks.for_launch(HP_CHAPTER_2, warn=False).apogee_altitude())
+    assert claims_extra.mks_apogee_miss_share() == pytest.approx(abs(mks_apogee - six) / six, 1e-3)
+
+
+def test_flat_fire_miss_is_the_gap_between_the_flat_fire_and_3dof_ranges():
+    launch = chapter_4_launch("HP", 50.0).but(cross_wind_m_s=0.0, spin_rad_s=0.0)
+    simulated = threedof.simulate_3dof(launch).attrs["range_m"]
+    flat = claims_extra.flat_fire_over_3dof("HP", 50.0, "range") * simulated
+    assert claims_extra.flat_fire_miss_km("HP", 50.0, "range") == pytest.approx(
+        (simulated - flat) / 1e3, rel=1e-6
+    )
+
+
+def test_orbital_drag_uses_the_1976_density_at_200_km():
+    # the printed 1976 table: 2.541e-10 kg/m^3 at 200 km (the ussa1976 package that
+    # atmosphere.standard_density tabulates runs 3 % above it there, 0.15 % at 100 km)
+    density, radius = 2.541e-10, R + 200e3
+    speed_squared, gravity = GM / radius, GM / radius**2  # circular orbit
+    drag = 0.5 * density * speed_squared * 2.2 * BASELINE.reference_area_m2 / BASELINE.mass_kg
+    assert claims_extra.orbital_drag_to_gravity(200.0) == pytest.approx(drag / gravity, rel=0.05)
+    assert claims_extra.orbital_drag_to_gravity(400.0) < claims_extra.orbital_drag_to_gravity(200.0)
+
+
+def _stormer_final_x(dt, correct_start):
+    """x at t = 10 of the oscillator x'' = -x (x = 1, x' = 1 at 0) flown by Appendix A's
+    recurrence x2 = 2 x1 - x0 + a dt^2, started as the listing does (x1 = x0 + v0 dt) or with
+    the a dt^2/2 term. (The Earth's gravity is too uniform over a flight for the recurrence's
+    own second-order error to stand out of the round-off.)"""
+    x0, v0 = 1.0, 1.0
+    x1 = x0 + v0 * dt - (0.5 * x0 * dt**2 if correct_start else 0.0)
+    for _ in range(round(10.0 / dt) - 1):
+        x0, x1 = x1, 2 * x1 - x0 - x1 * dt**2
+    return x1
+
+
+@pytest.mark.parametrize("correct_start, order", [(True, 2.0), (False, 1.0)])
+def test_observed_order_of_the_stormer_recurrence(correct_start, order):
+    finals = [_stormer_final_x(dt, correct_start) for dt in (0.05, 0.025, 0.0125)]
+    assert claims_extra.observed_order(*finals) == pytest.approx(order, abs=0.06)
+
+
+def test_observed_order_of_known_error_laws():
+    for p in (1.0, 2.0, 4.0):
+        assert claims_extra.observed_order(*(3.0 + 0.7 * h**p for h in (0.2, 0.1, 0.05))) == (
+            pytest.approx(p, abs=1e-9)
+        )
+    assert math.isnan(claims_extra.observed_order(1.0, 2.0, 1.0))  # not converging
+
+
+def test_similar_inertia_is_a_scaled_cylinders():
+    def cylinder(mass, radius, length):  # pitch inertia of a solid cylinder about its centre
+        return mass * (3 * radius**2 + length**2) / 12
+
+    scale = (HP.mass_kg / LP.mass_kg) ** (1 / 3)
+    radius, length, density = 0.0134, 0.75, 7800.0
+    small = density * math.pi * radius**2 * length
+    ratio = cylinder(small * scale**3, radius * scale, length * scale) / cylinder(
+        small, radius, length
+    )
+    assert claims_extra.similar_inertia_kg_m2("pitch") / LP.pitch_inertia_kg_m2 == pytest.approx(
+        ratio, rel=1e-12
+    )
+
+
+def test_lp_angle_of_attack_in_the_air_is_the_cross_wind_angle_at_the_muzzle():
+    expected = math.degrees(math.atan2(5.0, 2022.0))
+    assert claims_extra.max_angle_of_attack_below_deg("LP", 30.0) == pytest.approx(
+        expected, abs=1e-3
+    )
+
+
+def test_mach_over_speed_ratio_is_the_speeds_of_sound_ratio():
+    sound = atmosphere.two_segment_speed_of_sound(np.array([0.0, 20e3]))
+    assert claims_extra.mach_over_speed_ratio_max("HP") == pytest.approx(
+        sound[0] / sound[1], rel=2e-3
+    )
+
+
+def test_turn_in_a_vacuum_follows_from_energy_and_angular_momentum():
+    speed, phi, top = HP.launch_speed_m_s, math.radians(50.0), 20e3
+    radius = R + top
+    speed_at = math.sqrt(speed**2 - 2 * GM * (1 / R - 1 / radius))
+    angle = math.acos(R * speed * math.cos(phi) / (radius * speed_at))
+    turn = claims_extra.ascent_change_below("HP", "turn", 20.0, atmosphere="vacuum")
+    assert turn == pytest.approx(math.degrees(phi - angle), abs=1e-3)
+    assert claims_extra.ascent_change_below("HP", "speed", 20.0, atmosphere="vacuum") == (
+        pytest.approx(1 - speed_at / speed, abs=1e-6)
+    )
+
+
+def test_gravity_dominant_share_grows_with_the_ratio():
+    shares = [claims_extra.gravity_dominant_share("HP", n) for n in (0.1, 1.0, 1e9)]
+    assert shares[0] < shares[1] < shares[2] == pytest.approx(1.0, abs=1e-12)
+
+
+def test_text_gm_with_the_codata_constant():
+    assert constants.G == pytest.approx(6.67430e-11, rel=1e-12)
+    assert claims_extra.text_gm_over_appendix_gm() == pytest.approx(
+        6.67430e-11 * 5.972e24 / 398600.4418e9, rel=1e-12
+    )
+
+
+def test_break_jump_from_the_printed_equations():
+    below = 1.22581 * (1 - 0.00002257 * 10769.0) ** 4.256  # eq 2.2
+    above = 0.37454745  # eq 2.1 at its start
+    assert claims_extra.two_segment_break_jump() == pytest.approx(above / below - 1, abs=2e-6)
+
+
+@pytest.mark.parametrize("projectile", ["HP", "LP"])
+def test_ascent_momentum_loss_near_the_straight_line_decay(projectile):
+    # eq 3.23: h_inf = h0 exp(-beta) for a straight climb through eq 3.11's air
+    beta = comparisons.mks_beta(projectile, 50.0)
+    assert claims_extra.momentum_loss(projectile, "ascent") == pytest.approx(
+        1 - math.exp(-beta), abs=0.03
+    )
+    assert 0 < claims_extra.momentum_loss(projectile, "reentry") < 1
+
+
+def test_rotation_shift_of_a_short_vacuum_shot_is_the_first_order_one():
+    # east, north, up at 45 deg N; fired north at 45 deg elevation, 200 m/s
+    latitude, speed, omega = math.radians(45.0), 200.0, earth.ROTATION_RATE_RAD_S
+    g = GM / R**2
+    spin = omega * np.array([0.0, math.cos(latitude), math.sin(latitude)])
+    velocity = speed * np.array([0.0, math.cos(math.pi / 4), math.sin(math.pi / 4)])
+    t = 2 * velocity[2] / g
+    # r'' = g - 2 Omega x v - Omega x (Omega x r), to first order about the vacuum parabola
+    shift = (
+        -np.cross(spin, velocity) * t**2
+        - np.cross(spin, [0.0, 0.0, -g]) * t**3 / 3
+        + 0.5 * omega**2 * R * math.cos(latitude) * np.array([0.0, -math.sin(latitude), 0.0]) * t**2
+        + 0.5 * omega**2 * R * math.cos(latitude) ** 2 * np.array([0.0, 0.0, 1.0]) * t**2
+    )
+    on_ground = shift[:2] + velocity[:2] * shift[2] / velocity[2]  # later landing, further on
+    computed = claims_extra.rotation_impact_shift_km(speed, 45.0, 45.0, 0.0, atmosphere="vacuum")
+    assert computed * 1e3 == pytest.approx(np.linalg.norm(on_ground), rel=0.02)
+
+
+def test_only_a_rotating_earth_tells_launch_sites_apart():
+    assert claims_extra.nonrotating_spread_m(45.0) < 1e-2
+    assert claims_extra.nonrotating_spread_m(45.0, earth.ROTATION_RATE_RAD_S) > 1e3
+
+
+def test_baseline_momentum_share_near_the_straight_line_decay():
+    beta = comparisons.mks_beta("baseline", 30.0)
+    gamma = math.exp(-atmosphere.TEXT_DECAY_CONSTANT_PER_M * 20e3)
+    straight = (1 - math.exp(beta * (gamma - 1))) / (1 - math.exp(-beta))
+    share = claims_extra.baseline_momentum_loss_share_below(20.0, elevations_deg=(30.0,))
+    assert share == pytest.approx(straight, abs=0.03)
+
+
+def test_converged_series_apogee_solves_eq_3_30_with_the_double_exponential():
+    solution = mks.for_launch(chapter_4_launch("LP", 50.0), n_terms=15, warn=False)
+    c3, beta, tau = (float(x[0, 0]) for x in (solution.c3, solution.beta, solution.tau))
+    r0, phi = R, math.radians(50.0)
+
+    def rhs(theta, y):  # eq 3.30 with the series summed: c3 exp(-2 beta e^{-tau theta})
+        return [y[1], c3 * math.exp(-2 * beta * math.exp(-tau * theta)) - y[0]]
+
+    top = lambda theta, y: y[1]  # noqa: E731
+    top.terminal, top.direction = True, 1
+    ode = solve_ivp(
+        rhs,
+        (0, 1.0),
+        [1 / r0, -math.tan(phi) / r0],
+        rtol=1e-12,
+        atol=1e-20,
+        events=top,
+        first_step=1e-7,
+        max_step=1e-3,
+    )
+    apogee = 1 / ode.y_events[0][0][0] - r0
+    assert float(solution.apogee_altitude()) == pytest.approx(apogee, abs=0.1)
+    needed = claims_extra.series_terms_needed("LP", 50.0, 1.0)
+    fewer = mks.for_launch(chapter_4_launch("LP", 50.0), n_terms=needed - 1, warn=False)
+    assert abs(float(fewer.apogee_altitude()) - apogee) > 1.0
+
+
+def test_firing_solutions_agree_and_hit_the_point():
+    elevation_mks, _, _ = claims_extra.firing_solution("mks")
+    elevation_3dof, iterations, evaluations = claims_extra.firing_solution("3dof")
+    assert elevation_mks == pytest.approx(elevation_3dof, abs=0.1)  # the MKS's accuracy
+    flight = threedof.simulate_3dof(baseline_chapter_4(elevation_3dof), output_step_s=0.1)
+    up = flight[flight.time_s <= flight.attrs["apogee_time_s"]]
+    assert np.interp(150e3, up.ground_range_m, up.altitude_m) == pytest.approx(100e3, abs=1.0)
+    assert evaluations > 100 * iterations
+
+
+def test_pointing_shift_in_a_vacuum_turns_the_velocity():
+    launch = baseline_chapter_4(45.0, atmosphere="vacuum")
+    shift = claims_extra.position_shift_m(launch, elevation_error_mrad=1.0, at_s=10.0)
+    assert shift == pytest.approx(2157.0 * 10.0 * 1e-3, rel=5e-3)
+    speed_shift = claims_extra.position_shift_m(launch, speed_error_m_s=1.0, at_s=10.0)
+    assert speed_shift == pytest.approx(10.0, rel=5e-3)
+
+
+def test_mks_lands_where_the_3dof_does_in_a_vacuum():
+    assert claims_extra.mks_impact_miss_km("baseline", 45.0, atmosphere="vacuum") < 1e-3
+
+
+def test_mach_column_share_recomputed_independently():
+    rounds = harp.appendix_rounds("barbados")
+    rounds = rounds[~rounds.duplicate_of_earlier_row]
+    mach = rounds.muzzle_speed_m_s / harp.speed_of_sound("barbados")[0]
+    within = float(np.mean(np.abs(mach - rounds.mach) <= 0.005 + 1e-12))
+    assert claims_extra.appendix_column_share_within_rounding("barbados", "mach") == within
+
+
+def test_appendix_a_rotation_terms_in_a_vacuum():
+    # at the equator the printed omega R is right and without air the sign of the air
+    # velocity does not matter
+    assert abs(claims_extra.appendix_a_rotation_effect_error_km(atmosphere="vacuum")) < 0.02
+    # at 45 deg N the printed omega R adds omega R (1 - cos 45 deg) of eastward speed
+    latitude, speed, elevation = math.radians(45.0), 2157.0, math.radians(45.0)
+    surface = earth.ROTATION_RATE_RAD_S * R
+
+    def apogee(east_extra):
+        east, up = speed * math.cos(elevation) + east_extra, speed * math.sin(elevation)
+        conic = kepler.conic_from_state(R, math.hypot(east, up), math.atan2(up, east))
+        return conic.apogee_radius_m - R
+
+    expected = apogee(surface) - apogee(surface * math.cos(latitude))
+    computed = claims_extra.appendix_a_rotation_effect_error_km(45.0, 90.0, atmosphere="vacuum")
+    assert computed * 1e3 == pytest.approx(expected, rel=0.02)
+
+
+def test_printed_angle_of_attack_is_the_tangent():
+    ratio = claims_extra.printed_angle_of_attack_ratio("HP")
+    alpha = float(scenarios.reference_6dof("HP").angle_of_attack_rad.max())
+    assert ratio == pytest.approx(1 + alpha**2 / 3 + 2 * alpha**4 / 15, rel=1e-5)
+    assert math.degrees(alpha) > 4  # the large angle outside the air (Ch. 4 A)

@@ -414,3 +414,544 @@ def late_arrival_miss_m(
     horizontal = speed * math.cos(angle) * delay
     vertical = speed * math.sin(angle) * delay - 0.5 * g * delay**2
     return math.hypot(horizontal, vertical)
+
+
+# === Chapters 1-3 and 7, Appendices A-E: the sweep's statements without a row =================
+# (imports of this part kept here so that it reads on its own)
+from scipy import constants  # noqa: E402
+
+from . import appendix_a, effort, mks, scenarios, threedof, trajectory  # noqa: E402
+from .atmosphere import standard_density, two_segment_density  # noqa: E402
+from .launch import HP_CHAPTER_2, baseline_chapter_4  # noqa: E402
+from .projectiles import HP, LP, get_projectile  # noqa: E402
+from .validation import positive_scalar  # noqa: E402
+
+__all__ += [
+    "max_measured_apogee_km",
+    "mlt_over_3dof_orders",
+    "mks_apogee_miss_share",
+    "flat_fire_miss_km",
+    "TEXT_EARTH_MASS_KG",
+    "orbital_drag_to_gravity",
+    "observed_order",
+    "appendix_a_convergence_order",
+    "similar_inertia_kg_m2",
+    "max_angle_of_attack_below_deg",
+    "mach_over_speed_ratio_max",
+    "ascent_change_below",
+    "heavy_over_light",
+    "gravity_dominant_share",
+    "text_gm_over_appendix_gm",
+    "two_segment_break_jump",
+    "momentum_loss",
+    "momentum_loss_ratio",
+    "rotation_impact_shift_km",
+    "rotation_shift_growth",
+    "nonrotating_spread_m",
+    "baseline_momentum_loss_share_below",
+    "series_terms_needed",
+    "extra_series_terms",
+    "firing_solution",
+    "firing_solution_evaluations",
+    "firing_solutions_per_3dof_solution",
+    "position_shift_m",
+    "pointing_shift_over_mks_error",
+    "mks_impact_miss_km",
+    "impact_miss_over_total_error",
+    "appendix_column_share_within_rounding",
+    "appendix_a_rotation_effect_error_km",
+    "printed_angle_of_attack_ratio",
+]
+
+
+# --- Chapter 1 ----------------------------------------------------------------------------------
+def max_measured_apogee_km(site: str = "yuma") -> float:
+    """Highest measured apogee (km) among the appendix rows of ``site`` ("barbados", "yuma" or
+    "both"): Ch. 1 B's "HARP succeeded in placing a projectile to 180 km"."""
+    check_choice(site, "site", ("barbados", "yuma", "both"))
+    sites = ("barbados", "yuma") if site == "both" else (site,)
+    return max(float(harp.appendix_rounds(s).apogee_m.max()) for s in sites) / 1e3
+
+
+def mlt_over_3dof_orders(segment_length_m: float = 1000.0) -> float:
+    """log10 of MLT's operation count over the 3DOF's for HP's reference flight (Fig 4.7's
+    counting rule, :mod:`.effort`), MLT updated every ``segment_length_m`` (coefficients at
+    mid-segment, spherical density altitude, as :func:`effort.effort_table`)."""
+    length = check_range(
+        finite_scalar(segment_length_m, "segment_length_m"),
+        "segment_length_m",
+        low=0.0,
+        low_inclusive=False,
+    )
+    flops = effort.mlt_flops(
+        HP_CHAPTER_2,
+        density_altitude="spherical",
+        segment_length_m=length,
+        coefficients_at="middle",
+    )
+    return math.log10(flops / float(effort.effort_table().flops["3DOF"]))
+
+
+def mks_apogee_miss_share(method: str = "MKS (3 terms)") -> float:
+    """|apogee of ``method`` - the 6DOF's| over the 6DOF's apogee, HP at 50 deg (a row of
+    :func:`effort.effort_table`): the accuracy Ch. 1 C's MKS "trades off"."""
+    table = effort.effort_table()
+    check_choice(method, "method", tuple(table.index))
+    return float(table.apogee_difference_m[method] / table.apogee_m["6DOF"])
+
+
+def flat_fire_miss_km(
+    projectile: str = "HP", elevation_deg: float = 50.0, measure: str = "range"
+) -> float:
+    """|flat fire - 3DOF| (km) in range or apogee height (no wind; :func:`flat_fire_over_3dof`):
+    how far standard (flat-fire) linear theory's point-mass trajectory misses."""
+    check_choice(measure, "measure", ("apogee", "range"))
+    flight = fly_3dof(_no_wind(projectile, elevation_deg), 0.25)
+    simulated = flight.attrs["apogee_altitude_m" if measure == "apogee" else "range_m"]
+    ratio = flat_fire_over_3dof(projectile, elevation_deg, measure)
+    return abs(ratio - 1.0) * simulated / 1e3
+
+
+#: Ch. 2 A: the Earth's mass (kg).
+TEXT_EARTH_MASS_KG = 5.972e24
+
+
+def orbital_drag_to_gravity(
+    altitude_km: float = 200.0, drag_coefficient: float = 2.2, projectile: str = "baseline"
+) -> float:
+    """Drag over gravity N for ``projectile``'s mass and reference area on a circular orbit at
+    ``altitude_km`` in the 1976 standard atmosphere (Ch. 1 C: "density at LEO altitudes is
+    negligible"). With v^2 = GM/r and g = GM/r^2, N = rho Cd A r / (2 m). The default Cd = 2.2
+    is the usual free-molecular value for satellites, far above the cone's continuum Cd."""
+    altitude = check_range(
+        finite_scalar(altitude_km, "altitude_km"), "altitude_km", low=0.0, high=1000.0
+    )
+    cd = check_range(
+        finite_scalar(drag_coefficient, "drag_coefficient"),
+        "drag_coefficient",
+        low=0.0,
+        low_inclusive=False,
+    )
+    p = get_projectile(projectile)
+    radius = earth.RADIUS_M + altitude * 1e3
+    density = float(standard_density(altitude * 1e3))
+    return density * cd * p.reference_area_m2 * radius / (2 * p.mass_kg)
+
+
+# --- Chapter 2 ----------------------------------------------------------------------------------
+def observed_order(coarse: float, medium: float, fine: float) -> float:
+    """Observed order of convergence p of a result computed with steps h, h/2 and h/4:
+    log2((coarse - medium) / (medium - fine)) (the error goes as h^p)."""
+    values = [finite_scalar(v, name) for v, name in ((coarse, "coarse"), (medium, "medium"))]
+    values.append(finite_scalar(fine, "fine"))
+    first, second = values[0] - values[1], values[1] - values[2]
+    if first == 0.0 or second == 0.0 or (first > 0) != (second > 0):
+        return float("nan")
+    return math.log2(first / second)
+
+
+def appendix_a_convergence_order(
+    elevation_deg: float = 45.0, dt_s: float = 0.1, atmosphere: str = "three_layer"
+) -> float:
+    """Observed order of Appendix A's scheme (Ch. 2 A: "a custom written 2nd order 3DOF
+    simulation"): the baseline's apogee height flown by the macro with steps ``dt_s``,
+    ``dt_s``/2 and ``dt_s``/4 (:func:`observed_order`)."""
+    launch = baseline_chapter_4(elevation_deg, atmosphere=atmosphere)
+    step = positive_scalar(dt_s, "dt_s", "s")
+    apogees = [
+        appendix_a.simulate_appendix_a(launch, step / 2**n).attrs["apogee_altitude_m"]
+        for n in range(3)
+    ]
+    return observed_order(*apogees)
+
+
+def similar_inertia_kg_m2(axis: str = "pitch") -> float:
+    """HP's roll or pitch inertia (kg m^2) if HP were LP scaled up geometrically (same shape,
+    same density): LP's stated inertia times s^5, s = (m_HP / m_LP)^(1/3) (mass goes as s^3,
+    inertia as mass times length^2). Ch. 2 A gives HP 6.20934 (pitch) and 0.00853 (roll)."""
+    check_choice(axis, "axis", ("roll", "pitch"))
+    scale = (HP.mass_kg / LP.mass_kg) ** (1.0 / 3.0)
+    inertia = LP.pitch_inertia_kg_m2 if axis == "pitch" else LP.roll_inertia_kg_m2
+    if inertia is None:
+        raise ValueError(f"LP carries no {axis} inertia")
+    return inertia * scale**5
+
+
+def max_angle_of_attack_below_deg(projectile: str = "HP", altitude_km: float = 30.0) -> float:
+    """Largest total angle of attack (deg) of Chapter 2 A's 6DOF flight while below
+    ``altitude_km``, on the way up and on the way down (Fig 2.5)."""
+    flight = scenarios.reference_6dof(projectile)
+    low = flight.altitude_m < finite_scalar(altitude_km, "altitude_km") * 1e3
+    return float(np.degrees(flight.angle_of_attack_rad[low].max()))
+
+
+def _ascent_of(flight):
+    return flight[flight.time_s <= flight.attrs["apogee_time_s"]]
+
+
+def mach_over_speed_ratio_max(projectile: str = "HP") -> float:
+    """Largest (Mach / launch Mach) / (speed / launch speed) on the way up of Chapter 2 A's 3DOF
+    flight (Fig 2.8): how much more slowly the Mach number falls than the speed."""
+    ascent = _ascent_of(scenarios.reference_3dof(projectile))
+    mach = ascent.mach.to_numpy() / ascent.mach.iloc[0]
+    speed = ascent.speed_m_s.to_numpy() / ascent.speed_m_s.iloc[0]
+    return float(np.max(mach / speed))
+
+
+def ascent_change_below(
+    projectile: str = "HP",
+    quantity: str = "drag_coefficient",
+    altitude_km: float = 20.0,
+    atmosphere: str = "two_segment",
+) -> float:
+    """Change of a quantity over the ascent of Chapter 2 A's 3DOF flight (5 m/s cross wind) up
+    to ``altitude_km``:
+
+    - ``"drag_coefficient"``: largest |Cd / Cd0 - 1| (Fig 2.8);
+    - ``"speed"``: 1 - V / V0 at the altitude (the speed lost);
+    - ``"turn"``: launch flight-path angle minus the one at the altitude (deg), the curvature
+      of Fig 2.9's path in the lower atmosphere.
+    """
+    check_choice(quantity, "quantity", ("drag_coefficient", "speed", "turn"))
+    top = finite_scalar(altitude_km, "altitude_km") * 1e3
+    launch = scenarios.reference_launch(projectile).but(atmosphere=atmosphere)
+    ascent = _ascent_of(fly_3dof(launch))
+    low = ascent[ascent.altitude_m <= top]
+    if quantity == "drag_coefficient":
+        cd = low.drag_coefficient.to_numpy()
+        return float(np.max(np.abs(cd / cd[0] - 1.0)))
+    heights = ascent.altitude_m.to_numpy()
+    if quantity == "speed":
+        return float(1.0 - np.interp(top, heights, ascent.speed_m_s) / ascent.speed_m_s.iloc[0])
+    angle = ascent.flight_path_angle_rad.to_numpy()
+    return math.degrees(angle[0] - float(np.interp(top, heights, angle)))
+
+
+def heavy_over_light(quantity: str = "drag_coefficient", altitude_km: float = 20.0) -> float:
+    """:func:`ascent_change_below` of HP over LP's (Ch. 2 B: the heavier projectile "slows down
+    much less" and "shows less curvature")."""
+    return ascent_change_below("HP", quantity, altitude_km) / ascent_change_below(
+        "LP", quantity, altitude_km
+    )
+
+
+def gravity_dominant_share(projectile: str = "HP", ratio: float = 1.0) -> float:
+    """Share of Chapter 2 A's ground range flown with drag under ``ratio`` times gravity (N <
+    ``ratio``, Fig 2.2): "gravity is the dominant force over the vast majority of the
+    trajectory"."""
+    limit = check_range(finite_scalar(ratio, "ratio"), "ratio", low=0.0, low_inclusive=False)
+    flight = scenarios.reference_3dof(projectile)
+    n = flight.drag_to_gravity.to_numpy()
+    steps = np.diff(flight.ground_range_m.to_numpy())
+    below = 0.5 * (n[1:] + n[:-1]) < limit
+    return float(steps[below].sum() / flight.attrs["range_m"])
+
+
+def text_gm_over_appendix_gm(earth_mass_kg: float = TEXT_EARTH_MASS_KG) -> float:
+    """G M with Ch. 2 A's Earth mass and CODATA 2018's G (scipy.constants) over Appendices A and
+    B's GM = 398600.4418 km^3/s^2."""
+    return constants.G * finite_scalar(earth_mass_kg, "earth_mass_kg") / earth.GM_M3_S2
+
+
+def two_segment_break_jump(break_m: float = 10_769.0, offset_m: float = 1e-3) -> float:
+    """Relative jump of eqs 2.1-2.2's density across their break: rho just above over rho just
+    below, minus 1 (0 for a continuous fit)."""
+    at = finite_scalar(break_m, "break_m")
+    step = positive_scalar(offset_m, "offset_m", "m")
+    above, below = two_segment_density(np.array([at + step, at - step]))
+    return float(above / below - 1.0)
+
+
+def momentum_loss(projectile: str = "HP", part: str = "ascent", altitude_km: float = 20.0) -> float:
+    """Relative loss of specific angular momentum of Chapter 2 A's 3DOF flight (Fig 2.10):
+    over the whole ascent (``"ascent"``), or on the way down from ``altitude_km`` to impact
+    (``"reentry"``)."""
+    check_choice(part, "part", ("ascent", "reentry"))
+    flight = scenarios.reference_3dof(projectile)
+    momentum = flight.specific_angular_momentum_m2_s.to_numpy()
+    if part == "ascent":
+        ascent = _ascent_of(flight).specific_angular_momentum_m2_s.to_numpy()
+        return float(1.0 - ascent[-1] / ascent[0])
+    down = flight.time_s.to_numpy() > flight.attrs["apogee_time_s"]
+    heights = flight.altitude_m.to_numpy()[down][::-1]
+    start = np.interp(
+        finite_scalar(altitude_km, "altitude_km") * 1e3, heights, momentum[down][::-1]
+    )
+    return float(1.0 - momentum[-1] / start)
+
+
+def momentum_loss_ratio(
+    numerator: str = "LP", denominator: str = "HP", part: str = "ascent"
+) -> float:
+    """:func:`momentum_loss` of ``numerator`` over ``denominator``'s."""
+    return momentum_loss(numerator, part) / momentum_loss(denominator, part)
+
+
+def _earth_fixed_impact_m(launch: Launch) -> tuple[np.ndarray, float]:
+    """Impact point (Earth-fixed, m) and range (m) of the 3DOF flight of ``launch``."""
+    flight = threedof.simulate_3dof(launch, output_step_s=1.0)
+    inertial = flight[["x_m", "y_m", "z_m"]].to_numpy()[-1]
+    turned = launch.rotation_rate_rad_s * flight.attrs["time_of_flight_s"]
+    return trajectory.rotate_about_axis(inertial, -turned), flight.attrs["range_m"]
+
+
+def rotation_impact_shift_km(
+    speed_m_s: float = 2157.0,
+    elevation_deg: float = 45.0,
+    latitude_deg: float = 45.0,
+    bearing_deg: float = 0.0,
+    relative: bool = False,
+    atmosphere: str = "two_segment",
+) -> float:
+    """Distance (km) between the impact points of the baseline fired on a rotating and on a
+    non-rotating Earth (3DOF, Earth-fixed): the Coriolis and centrifugal correction of Ch. 2 A;
+    over the non-rotating range if ``relative``."""
+    launch = baseline_chapter_4(
+        elevation_deg,
+        speed_m_s=speed_m_s,
+        latitude_deg=latitude_deg,
+        bearing_deg=bearing_deg,
+        atmosphere=atmosphere,
+    )
+    still, reach = _earth_fixed_impact_m(launch)
+    turning, _ = _earth_fixed_impact_m(launch.but(rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S))
+    shift = float(np.linalg.norm(turning - still))
+    return shift / reach if relative else shift / 1e3
+
+
+def rotation_shift_growth(
+    low_speed_m_s: float = 800.0,
+    high_speed_m_s: float = 2157.0,
+    elevation_deg: float = 45.0,
+    latitude_deg: float = 45.0,
+    bearing_deg: float = 0.0,
+) -> float:
+    """The rotation's impact shift as a share of the range at ``high_speed_m_s`` over that at
+    ``low_speed_m_s`` (:func:`rotation_impact_shift_km`): "more pronounced as the projectile
+    velocities and range increase" (Ch. 2 A)."""
+    shifts = [
+        rotation_impact_shift_km(v, elevation_deg, latitude_deg, bearing_deg, relative=True)
+        for v in (high_speed_m_s, low_speed_m_s)
+    ]
+    return shifts[0] / shifts[1]
+
+
+def nonrotating_spread_m(
+    elevation_deg: float = 45.0,
+    rotation_rate_rad_s: float = 0.0,
+    latitudes_deg=(0.0, 30.0, 60.0, 85.0),
+    bearings_deg=(0.0, 90.0, 200.0, 315.0),
+) -> float:
+    """Largest spread (m) of the baseline's apogee height and range over launch latitudes and
+    bearings (3DOF): zero on Ch. 2 A's non-rotating Earth, where "it is unimportant where the
+    launch point is located or what bearing it is launched"."""
+    apogees, ranges = [], []
+    for latitude in latitudes_deg:
+        for bearing in bearings_deg:
+            flight = threedof.simulate_3dof(
+                baseline_chapter_4(
+                    elevation_deg,
+                    latitude_deg=latitude,
+                    bearing_deg=bearing,
+                    rotation_rate_rad_s=rotation_rate_rad_s,
+                ),
+                output_step_s=10.0,
+            )
+            apogees.append(flight.attrs["apogee_altitude_m"])
+            ranges.append(flight.attrs["range_m"])
+    return float(max(np.ptp(apogees), np.ptp(ranges)))
+
+
+# --- Chapter 3 ----------------------------------------------------------------------------------
+def baseline_momentum_loss_share_below(
+    altitude_km: float = 20.0, elevations_deg=BASELINE_ELEVATIONS_DEG
+) -> float:
+    """Smallest share, over ``elevations_deg``, of the baseline's ascent loss of specific
+    angular momentum spent below ``altitude_km`` (Ch. 4 B's flights, no wind)."""
+    top = finite_scalar(altitude_km, "altitude_km") * 1e3
+    shares = []
+    for elevation in elevations_deg:
+        ascent = _ascent_of(case("baseline", float(elevation))[0])
+        momentum = ascent.specific_angular_momentum_m2_s.to_numpy()
+        at = np.interp(top, ascent.altitude_m, momentum)
+        shares.append((momentum[0] - at) / (momentum[0] - momentum[-1]))
+    return float(min(shares))
+
+
+def series_terms_needed(
+    projectile: str = "baseline",
+    elevation_deg: float = 45.0,
+    apogee_tolerance_m: float = 1.0,
+    max_terms: int = 15,
+) -> int:
+    """Fewest series terms (eq 3.30) whose MKS apogee lies within ``apogee_tolerance_m`` of the
+    ``max_terms`` one (the converged series), for Chapter 4's launch of ``projectile``."""
+    tolerance = positive_scalar(apogee_tolerance_m, "apogee_tolerance_m", "m")
+    launch = chapter_4_launch(projectile, elevation_deg)
+
+    def apogee(n):
+        return float(mks.for_launch(launch, n_terms=n, warn=False).apogee_altitude())
+
+    converged = apogee(max_terms)
+    return next(n for n in range(1, max_terms + 1) if abs(apogee(n) - converged) <= tolerance)
+
+
+def extra_series_terms(
+    heavy: str = "LP",
+    light: str = "baseline",
+    apogee_tolerance_m: float = 1.0,
+    elevation_deg: float = 50.0,
+) -> int:
+    """:func:`series_terms_needed` of ``heavy`` minus that of ``light`` (Ch. 3 C: "the larger
+    the ballistic coefficient, the more terms are needed"), both at ``elevation_deg``."""
+    return series_terms_needed(heavy, elevation_deg, apogee_tolerance_m) - series_terms_needed(
+        light, elevation_deg, apogee_tolerance_m
+    )
+
+
+# --- Chapter 7 A: firing solutions ------------------------------------------------------------
+def firing_solution(
+    method: str = "mks",
+    target_range_km: float = 150.0,
+    target_altitude_km: float = 100.0,
+    elevation_bracket_deg: tuple[float, float] = (45.0, 75.0),
+    elevation_tolerance_deg: float = 1e-6,
+) -> tuple[float, int, int]:
+    """(elevation in deg, solver iterations, right-hand-side evaluations) of the baseline's
+    firing solution through a point ``target_altitude_km`` up and ``target_range_km``
+    downrange, by Brent's method on the elevation (the bearing is the target's on a
+    non-rotating Earth). ``method``: the three-term MKS (each iteration one closed-form
+    evaluation, counted as one) or the 3DOF (each iteration a whole adaptive flight)."""
+    check_choice(method, "method", ("mks", "3dof"))
+    reach = finite_scalar(target_range_km, "target_range_km") * 1e3
+    height = finite_scalar(target_altitude_km, "target_altitude_km") * 1e3
+    calls: list[int] = []
+
+    def miss(elevation_deg):
+        launch = baseline_chapter_4(float(elevation_deg))
+        if method == "mks":
+            solution = mks.for_launch(launch, warn=False)
+            calls.append(1)
+            return float(solution.altitude(np.array([reach / earth.RADIUS_M]))[0]) - height
+        flight = threedof.simulate_3dof(launch, output_step_s=0.1)
+        calls.append(flight.attrs["rhs_evaluations"])
+        ranges = flight.ground_range_m.to_numpy()
+        up = flight.time_s.to_numpy() <= flight.attrs["apogee_time_s"]
+        part = up if ranges[up][-1] >= reach else ~up
+        return float(np.interp(reach, ranges[part], flight.altitude_m.to_numpy()[part])) - height
+
+    low, high = elevation_bracket_deg
+    elevation = brentq(miss, low, high, xtol=positive_scalar(elevation_tolerance_deg, "tolerance"))
+    return float(elevation), len(calls), int(sum(calls))
+
+
+def firing_solution_evaluations(method: str = "mks", **target) -> int:
+    """Evaluations a firing solution takes (:func:`firing_solution`): MKS solutions for
+    ``method="mks"``, the 3DOF's right-hand-side evaluations for ``"3dof"``."""
+    _, iterations, evaluations = firing_solution(method, **target)
+    return iterations if method == "mks" else evaluations
+
+
+def firing_solutions_per_3dof_solution(**target) -> float:
+    """log10 of how many MKS firing solutions cost the operations of one 3DOF firing solution
+    (:func:`firing_solution`; operations per 3DOF evaluation and per MKS evaluation from
+    :func:`effort.effort_table`'s counts for HP's flight and apogee)."""
+    table = effort.effort_table()
+    per_evaluation = (
+        float(table.flops["3DOF"]) / threedof.simulate_3dof(HP_CHAPTER_2).attrs["rhs_evaluations"]
+    )
+    _, iterations, _ = firing_solution("mks", **target)
+    three = firing_solution("3dof", **target)[2] * per_evaluation
+    return math.log10(three / (iterations * float(table.flops["MKS (3 terms)"])))
+
+
+# --- Chapter 7 B-C: other uncertainties, ground fire ---------------------------------------------
+def position_shift_m(
+    launch: Launch, elevation_error_mrad: float = 0.0, speed_error_m_s: float = 0.0, at_s=None
+) -> float:
+    """Distance (m) between the 3DOF positions of ``launch`` and of the launch with its
+    elevation raised by ``elevation_error_mrad`` and its speed by ``speed_error_m_s``, at time
+    ``at_s`` (default: the unperturbed apogee time)."""
+    changed = launch.but(
+        elevation_deg=launch.elevation_deg
+        + math.degrees(finite_scalar(elevation_error_mrad, "elevation_error_mrad") * 1e-3),
+        speed_m_s=launch.speed_m_s + finite_scalar(speed_error_m_s, "speed_error_m_s"),
+    )
+    flights = [threedof.simulate_3dof(x, output_step_s=0.25) for x in (launch, changed)]
+    time = flights[0].attrs["apogee_time_s"] if at_s is None else finite_scalar(at_s, "at_s")
+    points = [
+        np.array([np.interp(time, f.time_s, f[c]) for c in ("x_m", "y_m", "z_m")]) for f in flights
+    ]
+    return float(np.linalg.norm(points[1] - points[0]))
+
+
+def pointing_shift_over_mks_error(
+    elevation_deg: float = 45.0, elevation_error_mrad: float = 1.0, speed_error_m_s: float = 0.0
+) -> float:
+    """Position change at the apogee time from a pointing error (and a muzzle-speed error) over
+    the three-term MKS's error at apogee, baseline at ``elevation_deg`` (Ch. 7 B: these
+    uncertainties "may end up being much larger" than the MKS's)."""
+    shift = position_shift_m(
+        baseline_chapter_4(elevation_deg), elevation_error_mrad, speed_error_m_s
+    )
+    return shift / 1e3 / _error_at_apogee_km(chapter_4_launch("baseline", elevation_deg))
+
+
+def mks_impact_miss_km(
+    projectile: str = "baseline", elevation_deg: float = 85.0, **launch_changes
+) -> float:
+    """|MKS impact range - 3DOF range| (km) of Chapter 4's launch (:func:`case`): where the
+    MKS puts a ground-fire round against where the simulation lands it."""
+    flight, solution, _ = case(projectile, elevation_deg, **launch_changes)
+    return abs(float(solution.impact_angle) * earth.RADIUS_M - flight.attrs["range_m"]) / 1e3
+
+
+def impact_miss_over_total_error(
+    projectile: str = "baseline", elevation_deg: float = 85.0
+) -> float:
+    """Ground-fire miss (:func:`mks_impact_miss_km`) over the total position error at the
+    3DOF's impact (eq 4.7, geometric reading): what Ch. 7 C calls "slightly misleading"."""
+    errors = case(projectile, elevation_deg)[2]
+    miss_m = mks_impact_miss_km(projectile, elevation_deg) * 1e3
+    return miss_m / float(errors.total_geometric_m.iloc[-1])
+
+
+# --- Appendices ---------------------------------------------------------------------------------
+def appendix_column_share_within_rounding(site: str = "barbados", column: str = "mach") -> float:
+    """Share of the distinct rounds of Appendix D or E whose printed ``column`` the package
+    recomputes (dissertation model) to within half a unit of the last printed digit
+    (:func:`harp.column_agreement`)."""
+    table = harp.column_agreement(site)
+    check_choice(column, "column", tuple(table.index))
+    return float(table.rounds_within[column] / table.rounds[column])
+
+
+def appendix_a_rotation_effect_error_km(
+    latitude_deg: float = 0.0,
+    bearing_deg: float = 90.0,
+    elevation_deg: float = 45.0,
+    dt_s: float = 0.05,
+    atmosphere: str = "three_layer",
+) -> float:
+    """The apogee change (km) that turning the Earth's rotation on makes with Appendix A's
+    rotation terms as printed (earthspin = 0.0000727221: omega R on the east velocity, air
+    velocity v + omega x r), minus the change it makes in the rotating 3DOF (omega R cos(lat),
+    v - omega x r); the baseline, the macro's step ``dt_s`` (its step error cancels in the
+    difference)."""
+    launch = baseline_chapter_4(
+        elevation_deg, latitude_deg=latitude_deg, bearing_deg=bearing_deg, atmosphere=atmosphere
+    )
+    turning = launch.but(rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S)
+    printed = [
+        appendix_a.simulate_appendix_a(x, dt_s).attrs["apogee_altitude_m"]
+        for x in (turning, launch)
+    ]
+    physical = [threedof.simulate_3dof(x).attrs["apogee_altitude_m"] for x in (turning, launch)]
+    return ((printed[0] - printed[1]) - (physical[0] - physical[1])) / 1e3
+
+
+def printed_angle_of_attack_ratio(projectile: str = "HP") -> float:
+    """Appendix B's printed angle of attack, sqrt(v^2 + w^2)/u in degrees (the tangent), over
+    the angle itself at the largest angle of attack of Chapter 2 A's 6DOF flight (Fig 2.5)."""
+    alpha = float(scenarios.reference_6dof(projectile).angle_of_attack_rad.max())
+    return math.tan(alpha) / alpha

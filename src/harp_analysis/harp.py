@@ -407,3 +407,63 @@ def column_agreement(site: str, model: str = "dissertation") -> pd.DataFrame:
             "rounds": len(misfit),
         }
     return pd.DataFrame(rows).T
+
+
+# --- Further Chapter 5-6 statements (the sweep's rows) --------------------------------------------
+__all__ += [
+    "round_count",
+    "site_difference_p_value",
+    "bearing_from_east_deg",
+    "mach_column_temperature_difference_k",
+    "splash_error",
+]
+
+
+def round_count(site: str, distinct: bool = True) -> int:
+    """Rounds in ``site``'s appendix: distinct round numbers, or every printed row."""
+    table = appendix_rounds(site)
+    return int(len(_distinct(table)) if distinct else len(table))
+
+
+def site_difference_p_value(quantity: str = "residual", model: str = "dissertation") -> float:
+    """Two-sided p-value of Welch's t-test that the Barbados and Yuma means are equal, over the
+    distinct rounds: the apogee residuals under ``model`` (``quantity="residual"``) or the
+    recovered muzzle speeds (``"muzzle_speed"``). A small value says the sites differ."""
+    from scipy.stats import ttest_ind
+
+    check_choice(quantity, "quantity", ("residual", "muzzle_speed"))
+    samples = []
+    for site in ("barbados", "yuma"):
+        if quantity == "residual":
+            frame = predicted_apogees(site, model)
+            samples.append(frame.residual_m[~frame.duplicate_of_earlier_row].to_numpy())
+        else:
+            samples.append(_distinct(appendix_rounds(site)).muzzle_speed_m_s.to_numpy())
+    return float(ttest_ind(*samples, equal_var=False).pvalue)
+
+
+def bearing_from_east_deg(site: str | None = None) -> float:
+    """Angle (deg) between a site's gun bearing and due east (090T); the larger of the two
+    sites' by default."""
+    sites = ("barbados", "yuma") if site is None else (site,)
+    return max(abs(math.degrees(get_site(s).gun_bearing_rad) - 90.0) for s in sites)
+
+
+def mach_column_temperature_difference_k(site: str = "yuma", reference: str = "barbados") -> float:
+    """Air temperature behind ``site``'s Mach column minus that behind ``reference``'s (K),
+    each a^2 / (gamma R) of :func:`speed_of_sound`."""
+    return air_temperature_k(speed_of_sound(site)[0]) - air_temperature_k(
+        speed_of_sound(reference)[0]
+    )
+
+
+def splash_error(
+    round_number: int = 181, relative: bool = False, model: str = "dissertation"
+) -> float:
+    """Observed splash range of a Barbados round (Ch. 6 E: 41.1 km for round 181) minus the ECI
+    MKS's (:func:`harp_rounds.splash_range_km`), km, or as a share of the observed range."""
+    from .harp_rounds import TEXT_SPLASH_RANGES_KM, splash_range_km
+
+    observed = TEXT_SPLASH_RANGES_KM[round_number]["observed splash"]
+    error = observed - splash_range_km("barbados", round_number, model)
+    return error / observed if relative else error

@@ -175,8 +175,9 @@ def evaluate(claim: Claim) -> ClaimResult:
     return ClaimResult(claim, float(result) * claim.scale)
 
 
-def evaluate_all() -> list[ClaimResult]:
-    return [evaluate(claim) for claim in load_claims()]
+def evaluate_all(prefix: str | tuple[str, ...] = "") -> list[ClaimResult]:
+    """Evaluate every claim, or only those whose id starts with ``prefix`` (a notebook's own)."""
+    return [evaluate(claim) for claim in load_claims() if claim.id.startswith(prefix)]
 
 
 def range_problem(result: ClaimResult) -> str | None:

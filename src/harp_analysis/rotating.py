@@ -32,6 +32,7 @@ import numpy as np
 import pandas as pd
 
 from . import appendix_a, comparisons, earth, eci, mks
+from .atmosphere import get_atmosphere
 from .caching import cached_copies
 from .launch import baseline_chapter_4
 from .mks_error import position_errors
@@ -199,3 +200,137 @@ def variant_improved_share(variant: str) -> float:
     return float(
         np.mean([comparisons.error_ratio(variant, elevation) < 1.0 for elevation in elevations])
     )
+
+
+# --- Further Chapter 5 statements (the sweep's rows) ----------------------------------------------
+__all__ += [
+    "west_over",
+    "lowest_elevation_worst_share",
+    "west_ordering_share",
+    "largest_extent_under_km",
+    "air_profile",
+    "misalignment_growth_share",
+    "speed_ratio_change_below",
+]
+
+
+def west_over(bearing_deg: float = 0.0, atmosphere: str = "two_segment") -> float:
+    """Errors at apogee summed over latitudes and elevations, 270T over ``bearing_deg``
+    (:func:`west_over_east` is ``bearing_deg=90``)."""
+    cases = errors_at_apogee_km(atmosphere)
+    return sum(v for (_, brg, _), v in cases.items() if brg == 270.0) / sum(
+        v for (_, brg, _), v in cases.items() if brg == bearing_deg
+    )
+
+
+def lowest_elevation_worst_share(atmosphere: str = "two_segment") -> float:
+    """Share of the six (latitude, bearing) pairs whose largest error at apogee is at the
+    lowest elevation, 30 deg (Ch. 5 D: "the error grows for lower elevations")."""
+    cases = errors_at_apogee_km(atmosphere)
+    lowest = min(ELEVATIONS_DEG)
+    return float(
+        np.mean(
+            [
+                max(ELEVATIONS_DEG, key=lambda el: cases[lat, brg, el]) == lowest
+                for lat in LATITUDES_DEG
+                for brg in BEARINGS_DEG
+            ]
+        )
+    )
+
+
+def west_ordering_share(by: str = "latitude", atmosphere: str = "two_segment") -> float:
+    """Ch. 5 D on west-fired (270T) shots, "the lower the trajectory and closer to the equator
+    ... the greater the error", as the share of comparisons that agree: ``by="latitude"``, the
+    four elevations at which the equator's error at apogee exceeds 45 deg N's; ``by="elevation"``,
+    the steps between neighbouring elevations (both latitudes) across which it falls as the
+    elevation rises."""
+    cases = errors_at_apogee_km(atmosphere)
+    if by == "latitude":
+        return float(
+            np.mean([cases[0.0, 270.0, el] > cases[45.0, 270.0, el] for el in ELEVATIONS_DEG])
+        )
+    if by == "elevation":
+        steps = [
+            cases[lat, 270.0, low] > cases[lat, 270.0, high]
+            for lat in LATITUDES_DEG
+            for low, high in zip(ELEVATIONS_DEG[:-1], ELEVATIONS_DEG[1:])
+        ]
+        return float(np.mean(steps))
+    raise ValueError(f"by must be 'latitude' or 'elevation', got {by!r}")
+
+
+def largest_extent_under_km(
+    quantity: str = "range", max_error_km: float = 1.0, atmosphere: str = "two_segment"
+) -> float:
+    """Largest ground range at impact (``quantity="range"``) or apogee (``"apogee"``), km, of
+    the rotating 3DOF over the 24 cases whose error at apogee is under ``max_error_km``."""
+    if quantity not in ("range", "apogee"):
+        raise ValueError(f"quantity must be 'range' or 'apogee', got {quantity!r}")
+    key = "range_m" if quantity == "range" else "apogee_altitude_m"
+    return max(
+        case(lat, brg, el, atmosphere=atmosphere)[0].attrs[key] / 1e3
+        for (lat, brg, el), error in errors_at_apogee_km(atmosphere).items()
+        if error < max_error_km
+    )
+
+
+def air_profile(
+    latitude_deg: float,
+    bearing_deg: float,
+    elevation_deg: float,
+    atmosphere: str = "two_segment",
+) -> pd.DataFrame:
+    """The rotating 3DOF's ascent with the inertial speed V, the air-relative speed Vrel (Mach
+    times the local speed of sound) and, from the two and the air's own speed omega r_perp
+    (r_perp: the distance from the Earth's axis; no wind), the misalignment angle mu between
+    them (law of cosines) and (Vrel/V)^2 (eqs 5.2-5.3)."""
+    flight = case(latitude_deg, bearing_deg, elevation_deg, atmosphere=atmosphere)[0]
+    ascent = flight[flight.time_s <= flight.attrs["apogee_time_s"]]
+    altitude = ascent.altitude_m.to_numpy()
+    speed = ascent.speed_m_s.to_numpy()
+    air_speed = ascent.mach.to_numpy() * get_atmosphere(atmosphere).speed_of_sound(altitude)
+    carried = earth.ROTATION_RATE_RAD_S * np.hypot(ascent.x_m, ascent.y_m).to_numpy()
+    cosine = (speed**2 + air_speed**2 - carried**2) / (2 * speed * air_speed)
+    return pd.DataFrame(
+        {
+            "time_s": ascent.time_s.to_numpy(),
+            "altitude_m": altitude,
+            "speed_m_s": speed,
+            "air_speed_m_s": air_speed,
+            "misalignment_rad": np.arccos(np.clip(cosine, -1.0, 1.0)),
+            "speed_ratio_squared": (air_speed / speed) ** 2,
+        }
+    )
+
+
+def _at_altitude(profile: pd.DataFrame, column: str, altitude_km: float) -> float:
+    return float(np.interp(altitude_km * 1e3, profile.altitude_m, profile[column]))
+
+
+def misalignment_growth_share(
+    bearing_deg: float = 90.0, altitude_km: float = 20.0, atmosphere: str = "two_segment"
+) -> float:
+    """Share of the eight cases fired on ``bearing_deg`` (two latitudes, four elevations) whose
+    misalignment angle mu is larger at ``altitude_km`` on the way up than at the gun (Ch. 5 D:
+    it "becomes smaller over time" when fired east, the curve "increases" it when fired west)."""
+    grows = []
+    for lat in LATITUDES_DEG:
+        for el in ELEVATIONS_DEG:
+            profile = air_profile(lat, bearing_deg, el, atmosphere)
+            mu = _at_altitude(profile, "misalignment_rad", altitude_km)
+            grows.append(mu > profile.misalignment_rad.iloc[0])
+    return float(np.mean(grows))
+
+
+def speed_ratio_change_below(altitude_km: float = 20.0, atmosphere: str = "two_segment") -> float:
+    """Largest relative change of (Vrel/V)^2 from its launch value while below ``altitude_km``
+    on the way up, over the 24 cases (eq 5.2 holds it constant at the launch value)."""
+    changes = []
+    for lat in LATITUDES_DEG:
+        for brg in BEARINGS_DEG:
+            for el in ELEVATIONS_DEG:
+                profile = air_profile(lat, brg, el, atmosphere)
+                low = profile[profile.altitude_m <= altitude_km * 1e3].speed_ratio_squared
+                changes.append(np.max(np.abs(low / low.iloc[0] - 1)))
+    return float(max(changes))
