@@ -5,7 +5,7 @@ import hashlib
 import numpy as np
 import pytest
 
-from harp_analysis import build, paths, plotting
+from harp_analysis import paths, plotting
 
 
 @pytest.fixture
@@ -37,15 +37,3 @@ def test_save_figure_refuses_unregistered_or_fileless_numbers(figures_dir):
         plotting.save_figure(fig, "1.1")
     with pytest.raises(TypeError, match="fig must be a matplotlib Figure"):
         plotting.save_figure("figure", "2.1")
-
-
-def test_atmosphere_notebook_regenerates_identical_figures(tmp_path):
-    """`make figures` twice: fig_2_1.png and fig_3_2.png come out byte for byte the same."""
-    notebook = paths.NOTEBOOKS_DIR / "01_atmosphere.ipynb"
-    digests = []
-    for run in ("first", "second"):
-        build.execute_notebook(notebook, figures_dir=tmp_path / run)
-        digests.append(
-            {name: _digest(tmp_path / run / name) for name in ("fig_2_1.png", "fig_3_2.png")}
-        )
-    assert digests[0] == digests[1]

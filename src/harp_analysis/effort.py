@@ -479,12 +479,13 @@ def best_time(function, repeat: int = 5, number: int = 1) -> float:
 
 
 @cached_copies
-def effort_table(elevation_deg: float = 50.0) -> pd.DataFrame:
+def effort_table(elevation_deg: float = 50.0, timed: bool = True) -> pd.DataFrame:
     """FLOPs and wall time per apogee of HP at ``elevation_deg``, and each apogee's difference
     from the 6DOF's: 6DOF, 3DOF, MKS (three terms, straight-line code; and vectorised over a
     million launches) and Modified Linear Theory (1 km segments, coefficients at each
     segment's middle, the 6DOF's spherical density altitude). The simulations fly to impact,
-    as the figure's methods do; the MKS evaluates the apogee alone."""
+    as the figure's methods do; the MKS evaluates the apogee alone. ``timed=False``
+    leaves the wall times NaN: the counts (the ledger's) need no timing."""
     from .launch import HP_CHAPTER_2
 
     launch = HP_CHAPTER_2.but(elevation_deg=elevation_deg)
@@ -516,35 +517,39 @@ def effort_table(elevation_deg: float = 50.0) -> pd.DataFrame:
     )
     many = np.full(1_000_000, launch.elevation_rad)
     lookup = 14  # Cd0 from the M829 table: one lookup and the linear interpolation
+
+    def seconds(function, **repeats):  # wall time only when asked: the counts do not need it
+        return best_time(function, **repeats) if timed else math.nan
+
     rows = [
         (
             "6DOF",
             six_flops,
-            best_time(lambda: simulate_6dof(launch, density_altitude="spherical"), repeat=2),
+            seconds(lambda: simulate_6dof(launch, density_altitude="spherical"), repeat=2),
             six.attrs["apogee_altitude_m"],
         ),
         (
             "3DOF",
             three_flops,
-            best_time(lambda: threedof.simulate_3dof(launch)),
+            seconds(lambda: threedof.simulate_3dof(launch)),
             three.attrs["apogee_altitude_m"],
         ),
         (
             "MLT",
             linear_flops,
-            best_time(lambda: mlt.simulate_mlt(launch, **mlt_flight)),
+            seconds(lambda: mlt.simulate_mlt(launch, **mlt_flight)),
             linear.attrs["apogee_altitude_m"],
         ),
         (
             "MKS (3 terms)",
             mks_apogee_flops() + lookup,
-            best_time(lambda: mks_apogee(*inputs), number=1000),
+            seconds(lambda: mks_apogee(*inputs), number=1000),
             float(mks_apogee(*inputs)),
         ),
         (
             "MKS, a million launches at once (per launch)",
             mks_apogee_flops() + lookup,
-            best_time(lambda: mks_apogee(inputs[0], many, *inputs[2:]), repeat=3) / many.size,
+            seconds(lambda: mks_apogee(inputs[0], many, *inputs[2:]), repeat=3) / many.size,
             float(mks_apogee(*inputs)),
         ),
     ]
@@ -582,5 +587,5 @@ def orders_of_magnitude(method: str, than: str = "MKS (3 terms)") -> float:
     """log10 of the operation count of ``method`` over ``than``'s (Ch. 4 A, Fig 4.7);
     ``method`` and ``than`` are rows of :func:`effort_table` ("6DOF", "3DOF", "MLT",
     "MKS (3 terms)", ...)."""
-    flops = effort_table().flops
+    flops = effort_table(timed=False).flops
     return float(np.log10(flops[method] / flops[than]))
