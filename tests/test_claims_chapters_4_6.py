@@ -10,6 +10,7 @@ from scipy import stats
 from scipy.integrate import quad
 
 from harp_analysis import comparisons, earth, eci, harp, harp_data, harp_rounds, rotating
+from harp_analysis.atmosphere import DRY_AIR_GAS_CONSTANT_J_KG_K
 from harp_analysis.launch import baseline_chapter_4
 from harp_analysis.projectiles import BASELINE
 
@@ -231,7 +232,7 @@ def test_bearings_temperatures_and_splash():
     assert harp.bearing_from_east_deg() == pytest.approx(19.0)
     a_yuma, a_barbados = harp.speed_of_sound("yuma")[0], harp.speed_of_sound("barbados")[0]
     assert harp.mach_column_temperature_difference_k() == pytest.approx(
-        (a_yuma**2 - a_barbados**2) / (1.4 * 287.05)
+        (a_yuma**2 - a_barbados**2) / (1.4 * DRY_AIR_GAS_CONSTANT_J_KG_K)
     )
     assert harp.splash_error() == pytest.approx(41.1 - harp_rounds.splash_range_km())
     assert harp.splash_error(relative=True) == pytest.approx(harp.splash_error() / 41.1)

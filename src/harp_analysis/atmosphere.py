@@ -32,6 +32,7 @@ import numpy as np
 from .validation import check_choice, check_range, finite_array, finite_scalar
 
 __all__ = [
+    "DRY_AIR_GAS_CONSTANT_J_KG_K",
     "SEA_LEVEL_DENSITY_KG_M3",
     "TEXT_DECAY_CONSTANT_PER_M",
     "AtmosphereModel",
@@ -59,6 +60,8 @@ __all__ = [
 SEA_LEVEL_DENSITY_KG_M3 = 1.225  # US Standard Atmosphere 1976; Chapter 3 B's rho0
 TEXT_DECAY_CONSTANT_PER_M = 0.117e-3  # Chapter 3 B: k = 0.117 /km
 _HEAT_CAPACITY_RATIO = 1.4
+#: The 1976 standard's specific gas constant of dry air (J/(kg K)).
+DRY_AIR_GAS_CONSTANT_J_KG_K = 287.05287
 _GAS_CONSTANT_J_KG_K = 287.0  # as Appendix A writes it (the standard's is 287.05287)
 
 # The reference table: ussa1976 is exact but slow to call per point, so tabulate once.
@@ -106,7 +109,9 @@ def standard_speed_of_sound(altitude_m) -> np.ndarray:
 
 def _standard_speed_of_sound(a):
     grid, _, temperature = _standard_table()
-    return np.sqrt(_HEAT_CAPACITY_RATIO * 287.05287 * np.interp(a, grid, temperature))
+    return np.sqrt(
+        _HEAT_CAPACITY_RATIO * DRY_AIR_GAS_CONSTANT_J_KG_K * np.interp(a, grid, temperature)
+    )
 
 
 # --- Eqs 2.1 and 2.2, as coded in Appendix B -------------------------------------------------

@@ -12,18 +12,44 @@ import math
 import warnings
 
 import numpy as np
+from scipy import constants
 from scipy.optimize import brentq
 
-from . import earth, eci, harp, kepler, rotating
-from .comparisons import BASELINE_ELEVATIONS_DEG, VARIANTS, case, chapter_4_launch, fly
-from .launch import Launch
-from .projectiles import BASELINE
+from . import (
+    appendix_a,
+    earth,
+    eci,
+    effort,
+    harp,
+    kepler,
+    mks,
+    rotating,
+    scenarios,
+    threedof,
+    trajectory,
+)
+from .atmosphere import DRY_AIR_GAS_CONSTANT_J_KG_K, standard_density, two_segment_density
+from .comparisons import (
+    BASELINE_ELEVATIONS_DEG,
+    VARIANTS,
+    case,
+    chapter_4_launch,
+    fly,
+    launch_error_at_apogee_km,
+)
+from .launch import HP_CHAPTER_2, Launch, baseline_chapter_4
+from .projectiles import BASELINE, HP, LP, get_projectile
 from .scenarios import fly_3dof
-from .validation import ModelValidityWarning, check_choice, check_range, finite_scalar
+from .validation import (
+    ModelValidityWarning,
+    check_choice,
+    check_range,
+    finite_scalar,
+    positive_scalar,
+)
 
 __all__ = [
     "STANDARD_PRESSURE_PA",
-    "AIR_GAS_CONSTANT_J_KG_K",
     "tangent_line_ceiling_m",
     "v3_apogee_bound_km",
     "v3_drag_free_apogee_km",
@@ -45,12 +71,44 @@ __all__ = [
     "site_density_kg_m3",
     "spread_over_mks_error",
     "late_arrival_miss_m",
+    "max_measured_apogee_km",
+    "mlt_over_3dof_orders",
+    "mks_apogee_miss_share",
+    "flat_fire_miss_km",
+    "TEXT_EARTH_MASS_KG",
+    "orbital_drag_to_gravity",
+    "observed_order",
+    "appendix_a_convergence_order",
+    "similar_inertia_kg_m2",
+    "max_angle_of_attack_below_deg",
+    "mach_over_speed_ratio_max",
+    "ascent_change_below",
+    "heavy_over_light",
+    "gravity_dominant_share",
+    "text_gm_over_appendix_gm",
+    "two_segment_break_jump",
+    "momentum_loss",
+    "momentum_loss_ratio",
+    "rotation_impact_shift_km",
+    "rotation_shift_growth",
+    "nonrotating_spread_m",
+    "baseline_momentum_loss_share_below",
+    "series_terms_needed",
+    "extra_series_terms",
+    "firing_solution",
+    "firing_solution_evaluations",
+    "firing_solutions_per_3dof_solution",
+    "position_shift_m",
+    "pointing_shift_over_mks_error",
+    "mks_impact_miss_km",
+    "impact_miss_over_total_error",
+    "appendix_column_share_within_rounding",
+    "appendix_a_rotation_effect_error_km",
+    "printed_angle_of_attack_ratio",
 ]
 
 #: Sea-level pressure of the 1976 standard atmosphere (Pa).
 STANDARD_PRESSURE_PA = 101_325.0
-#: Specific gas constant of dry air (J/(kg K)), the 1976 standard's.
-AIR_GAS_CONSTANT_J_KG_K = 287.05287
 
 
 def _no_wind(projectile: str, elevation_deg: float) -> Launch:
@@ -248,14 +306,6 @@ def natural_over_driving_frequency(projectile: str = "HP", elevation_deg: float 
 
 
 # --- Chapter 4 B: beta and the baseline --------------------------------------------------------
-def _error_at_apogee_km(launch: Launch) -> float:
-    flight, _, errors = fly(launch)
-    return (
-        float(np.interp(flight.attrs["apogee_time_s"], errors.time_s, errors.total_geometric_m))
-        / 1e3
-    )
-
-
 def beta_accuracy_limit(
     error_km: float = 1.0, projectile: str = "HP", elevation_deg: float = 50.0
 ) -> float:
@@ -272,7 +322,7 @@ def beta_accuracy_limit(
         return base.but(projectile=changed)
 
     def excess(log_mass):
-        return _error_at_apogee_km(launch(log_mass)) - target
+        return launch_error_at_apogee_km(launch(log_mass)) - target
 
     nominal = math.log(base.projectile.mass_kg)
     log_mass = brentq(excess, nominal - math.log(3.0), nominal + math.log(6.0), xtol=1e-5)
@@ -366,7 +416,7 @@ def density_at_temperature_kg_m3(
     pressure = check_range(
         finite_scalar(pressure_pa, "pressure_pa"), "pressure_pa", low=0.0, low_inclusive=False
     )
-    return pressure / (AIR_GAS_CONSTANT_J_KG_K * temperature)
+    return pressure / (DRY_AIR_GAS_CONSTANT_J_KG_K * temperature)
 
 
 def site_density_kg_m3(
@@ -416,52 +466,7 @@ def late_arrival_miss_m(
     return math.hypot(horizontal, vertical)
 
 
-# === Chapters 1-3 and 7, Appendices A-E: the sweep's statements without a row =================
-# (imports of this part kept here so that it reads on its own)
-from scipy import constants  # noqa: E402
-
-from . import appendix_a, effort, mks, scenarios, threedof, trajectory  # noqa: E402
-from .atmosphere import standard_density, two_segment_density  # noqa: E402
-from .launch import HP_CHAPTER_2, baseline_chapter_4  # noqa: E402
-from .projectiles import HP, LP, get_projectile  # noqa: E402
-from .validation import positive_scalar  # noqa: E402
-
-__all__ += [
-    "max_measured_apogee_km",
-    "mlt_over_3dof_orders",
-    "mks_apogee_miss_share",
-    "flat_fire_miss_km",
-    "TEXT_EARTH_MASS_KG",
-    "orbital_drag_to_gravity",
-    "observed_order",
-    "appendix_a_convergence_order",
-    "similar_inertia_kg_m2",
-    "max_angle_of_attack_below_deg",
-    "mach_over_speed_ratio_max",
-    "ascent_change_below",
-    "heavy_over_light",
-    "gravity_dominant_share",
-    "text_gm_over_appendix_gm",
-    "two_segment_break_jump",
-    "momentum_loss",
-    "momentum_loss_ratio",
-    "rotation_impact_shift_km",
-    "rotation_shift_growth",
-    "nonrotating_spread_m",
-    "baseline_momentum_loss_share_below",
-    "series_terms_needed",
-    "extra_series_terms",
-    "firing_solution",
-    "firing_solution_evaluations",
-    "firing_solutions_per_3dof_solution",
-    "position_shift_m",
-    "pointing_shift_over_mks_error",
-    "mks_impact_miss_km",
-    "impact_miss_over_total_error",
-    "appendix_column_share_within_rounding",
-    "appendix_a_rotation_effect_error_km",
-    "printed_angle_of_attack_ratio",
-]
+# === Chapters 1-3 and 7, Appendices A-E: the sweep's statements ============================
 
 
 # --- Chapter 1 ----------------------------------------------------------------------------------
@@ -585,14 +590,10 @@ def max_angle_of_attack_below_deg(projectile: str = "HP", altitude_km: float = 3
     return float(np.degrees(flight.angle_of_attack_rad[low].max()))
 
 
-def _ascent_of(flight):
-    return flight[flight.time_s <= flight.attrs["apogee_time_s"]]
-
-
 def mach_over_speed_ratio_max(projectile: str = "HP") -> float:
     """Largest (Mach / launch Mach) / (speed / launch speed) on the way up of Chapter 2 A's 3DOF
     flight (Fig 2.8): how much more slowly the Mach number falls than the speed."""
-    ascent = _ascent_of(scenarios.reference_3dof(projectile))
+    ascent = scenarios.ascent(scenarios.reference_3dof(projectile))
     mach = ascent.mach.to_numpy() / ascent.mach.iloc[0]
     speed = ascent.speed_m_s.to_numpy() / ascent.speed_m_s.iloc[0]
     return float(np.max(mach / speed))
@@ -615,7 +616,7 @@ def ascent_change_below(
     check_choice(quantity, "quantity", ("drag_coefficient", "speed", "turn"))
     top = finite_scalar(altitude_km, "altitude_km") * 1e3
     launch = scenarios.reference_launch(projectile).but(atmosphere=atmosphere)
-    ascent = _ascent_of(fly_3dof(launch))
+    ascent = scenarios.ascent(fly_3dof(launch))
     low = ascent[ascent.altitude_m <= top]
     if quantity == "drag_coefficient":
         cd = low.drag_coefficient.to_numpy()
@@ -670,7 +671,7 @@ def momentum_loss(projectile: str = "HP", part: str = "ascent", altitude_km: flo
     flight = scenarios.reference_3dof(projectile)
     momentum = flight.specific_angular_momentum_m2_s.to_numpy()
     if part == "ascent":
-        ascent = _ascent_of(flight).specific_angular_momentum_m2_s.to_numpy()
+        ascent = scenarios.ascent(flight).specific_angular_momentum_m2_s.to_numpy()
         return float(1.0 - ascent[-1] / ascent[0])
     down = flight.time_s.to_numpy() > flight.attrs["apogee_time_s"]
     heights = flight.altitude_m.to_numpy()[down][::-1]
@@ -768,14 +769,11 @@ def baseline_momentum_loss_share_below(
 ) -> float:
     """Smallest share, over ``elevations_deg``, of the baseline's ascent loss of specific
     angular momentum spent below ``altitude_km`` (Ch. 4 B's flights, no wind)."""
-    top = finite_scalar(altitude_km, "altitude_km") * 1e3
-    shares = []
-    for elevation in elevations_deg:
-        ascent = _ascent_of(case("baseline", float(elevation))[0])
-        momentum = ascent.specific_angular_momentum_m2_s.to_numpy()
-        at = np.interp(top, ascent.altitude_m, momentum)
-        shares.append((momentum[0] - at) / (momentum[0] - momentum[-1]))
-    return float(min(shares))
+    top = finite_scalar(altitude_km, "altitude_km")
+    return min(
+        scenarios.loss_share_below(case("baseline", float(elevation))[0], top)
+        for elevation in elevations_deg
+    )
 
 
 def series_terms_needed(
@@ -894,7 +892,7 @@ def pointing_shift_over_mks_error(
     shift = position_shift_m(
         baseline_chapter_4(elevation_deg), elevation_error_mrad, speed_error_m_s
     )
-    return shift / 1e3 / _error_at_apogee_km(chapter_4_launch("baseline", elevation_deg))
+    return shift / 1e3 / launch_error_at_apogee_km(chapter_4_launch("baseline", elevation_deg))
 
 
 def mks_impact_miss_km(

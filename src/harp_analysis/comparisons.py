@@ -30,6 +30,7 @@ __all__ = [
     "fly",
     "case",
     "error_at_apogee_km",
+    "launch_error_at_apogee_km",
     "error_ratio",
     "max_error_change_km",
     "elevation_error_ratio",
@@ -106,13 +107,29 @@ def _at_apogee(errors: pd.DataFrame, flight: pd.DataFrame, column: str) -> float
     return float(np.interp(flight.attrs["apogee_time_s"], errors.time_s, errors[column]))
 
 
-def error_at_apogee_km(
-    projectile: str = "baseline", elevation_deg: float = 45.0, relative: bool = False, **variant
-) -> float:
-    """Total position error at the 3DOF's apogee (km, or as a share of the apogee)."""
-    flight, _, errors = case(projectile, elevation_deg, **variant)
+def launch_error_at_apogee_km(launch: Launch, relative: bool = False, **fly_options) -> float:
+    """Total position error (eq 4.7, geometric reading) at the 3DOF's apogee of ``launch``
+    (km, or as a share of the apogee)."""
+    flight, _, errors = fly(launch, **fly_options)
     error = _at_apogee(errors, flight, "total_geometric_m")
     return error / flight.attrs["apogee_altitude_m"] if relative else error / 1e3
+
+
+def error_at_apogee_km(
+    projectile: str = "baseline",
+    elevation_deg: float = 45.0,
+    relative: bool = False,
+    *,
+    n_terms: int = 3,
+    momentum_from_apogee: bool = False,
+    **launch_changes,
+) -> float:
+    """:func:`launch_error_at_apogee_km` of Chapter 4's launch of ``projectile`` (with the
+    variants' ``launch_changes``)."""
+    launch = chapter_4_launch(projectile, elevation_deg).but(**launch_changes)
+    return launch_error_at_apogee_km(
+        launch, relative, n_terms=n_terms, momentum_from_apogee=momentum_from_apogee
+    )
 
 
 #: The variants of Chapter 4 C (Figs 4.13, 4.15, 4.17, 4.18) as arguments of :func:`case`.

@@ -38,6 +38,7 @@ import pandas as pd
 from scipy.optimize import brentq, minimize_scalar
 
 from . import eci
+from .atmosphere import DRY_AIR_GAS_CONSTANT_J_KG_K
 from .harp_data import FOOT_M, load_appendix, load_muzzle_speeds
 from .sites import get_site
 from .validation import check_choice
@@ -78,7 +79,7 @@ PRINT_HALF_UNITS = {
     "apogee_error_m": 5.0,
     "delta_apogee_m": 5.0,
 }
-_GAS = 1.4 * 287.05  # gamma R of air (J/(kg K)), for the temperature behind a speed of sound
+_GAS = 1.4 * DRY_AIR_GAS_CONSTANT_J_KG_K  # gamma R, for the temperature behind a sound speed
 _TOLERANCE_KM = 0.02  # the Cd0 A interval of Appendix E's Error column: every round this close
 
 

@@ -102,7 +102,14 @@ from scipy.optimize import brentq
 
 from . import earth, kepler
 from .launch import Launch
-from .sixdof import DENSITY_ALTITUDES, RigidBodyModel, rigid_body_launch, trajectory_table
+from .sixdof import (
+    DENSITY_ALTITUDES,
+    RigidBodyModel,
+    flight_table,
+    launch_state,
+    rigid_body_launch,
+    trajectory_table,
+)
 from .trajectory import describe
 from .validation import (
     ModelValidityWarning,
@@ -437,7 +444,7 @@ def simulate_mlt(
     check_choice(density_altitude, "density_altitude", DENSITY_ALTITUDES)
     model = rigid_body_launch(launch, "MLT", density_altitude)
     projectile = launch.projectile
-    elevation, speed, spin = launch.elevation_deg, launch.speed_m_s, launch.spin_rad_s
+    elevation, speed = launch.elevation_deg, launch.speed_m_s
     length_m = positive_scalar(segment_length_m, "segment_length_m", "m")
     check_choice(coefficients_at, "coefficients_at", COEFFICIENT_POINTS)
     check_choice(gravity, "gravity", GRAVITY_MODELS)
@@ -464,7 +471,7 @@ def simulate_mlt(
             stacklevel=2,
         )
 
-    state = (0.0, 0.0, 0.0, 0.0, math.radians(elevation), 0.0, speed, 0.0, 0.0, spin, 0.0, 0.0)
+    state = tuple(launch_state(launch).tolist())
     segments: list[_Segment] = []
     time, impact, problem = 0.0, False, None
     apogee: tuple | None = None
@@ -635,20 +642,7 @@ def simulate_linear_theory_limit(
     # (solve_ivp reads an event's options from attributes of the function)
     impact.terminal, impact.direction = True, -1  # type: ignore[attr-defined]
     apogee.direction = -1  # type: ignore[attr-defined]
-    y0 = [
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        launch.elevation_rad,
-        0.0,
-        launch.speed_m_s,
-        0.0,
-        0.0,
-        launch.spin_rad_s,
-        0.0,
-        0.0,
-    ]
+    y0 = launch_state(launch)
     solution = solve_ivp(
         lambda t, y: linear_theory_derivatives(model, y.tolist(), frame_coupling=frame_coupling),
         (0.0, max_time),
@@ -664,21 +658,12 @@ def simulate_linear_theory_limit(
             f"linear-theory limit of {launch.projectile.name} failed at "
             f"t = {solution.t[-1]:.3f} s: {solution.message}"
         )
-    end = float(solution.t[-1])
-    times = np.append(np.arange(0.0, end, step), end)
-    frame = trajectory_table(model, times, solution.sol(times))
-    top = None
-    if solution.t_events[1].size:
-        row = trajectory_table(model, solution.t_events[1][:1], solution.y_events[1][:1].T)
-        top = (float(solution.t_events[1][0]), *row[["altitude_m", "ground_range_m"]].iloc[0])
-    return describe(
-        frame,
-        engine="linear-theory limit",
-        launch=launch,
-        apogee=top,
-        impact=solution.status == 1,
-        rhs_evaluations=solution.nfev,
-        steps=solution.t.size - 1,
+    return flight_table(
+        model,
+        solution,
+        launch,
+        "linear-theory limit",
+        output_step_s=step,
         max_time_s=max_time,
         rtol=rtol,
         density_altitude=density_altitude,

@@ -42,6 +42,8 @@ __all__ = [
     "angular_momentum_loss_share_below",
     "angular_momentum_change_above",
     "launch_energy_mj",
+    "ascent",
+    "loss_share_below",
 ]
 
 _FINE_STEP_S = 0.01
@@ -119,20 +121,30 @@ def launch_drag_to_gravity(
     return float(drag / (p.mass_kg * g))
 
 
-def _ascent(flight: pd.DataFrame) -> pd.DataFrame:
+def ascent(flight: pd.DataFrame) -> pd.DataFrame:
+    """The rows of ``flight`` up to its apogee."""
     return flight[flight.time_s <= flight.attrs["apogee_time_s"]]
+
+
+def loss_share_below(flight: pd.DataFrame, altitude_km: float = 20.0) -> float:
+    """Share of ``flight``'s ascent loss of specific angular momentum spent below
+    ``altitude_km``."""
+    rising = ascent(flight)
+    momentum = rising.specific_angular_momentum_m2_s.to_numpy()
+    at = np.interp(altitude_km * 1e3, rising.altitude_m, momentum)
+    return float((momentum[0] - at) / (momentum[0] - momentum[-1]))
 
 
 def drag_to_gravity_crossing_altitude_km(projectile: str, ratio: float = 1.0) -> float:
     """Altitude (km) where N = drag/gravity falls through ``ratio`` on the way up (Table 4.1's
     "altitude where drag = weight" is ``ratio = 1``)."""
     ratio = check_range(finite_scalar(ratio, "ratio"), "ratio", low=0.0, low_inclusive=False)
-    ascent = _ascent(reference_3dof(projectile, cross_wind_m_s=0.0))
-    below = np.flatnonzero(ascent.drag_to_gravity.to_numpy() < ratio)
+    rising = ascent(reference_3dof(projectile, cross_wind_m_s=0.0))
+    below = np.flatnonzero(rising.drag_to_gravity.to_numpy() < ratio)
     if below.size == 0 or below[0] == 0:
         return float("nan")
     i = below[0]
-    n, a = ascent.drag_to_gravity.to_numpy(), ascent.altitude_m.to_numpy()
+    n, a = rising.drag_to_gravity.to_numpy(), rising.altitude_m.to_numpy()
     return float(np.interp(np.log(ratio), np.log(n[[i, i - 1]]), a[[i, i - 1]]) / 1e3)
 
 
@@ -144,10 +156,7 @@ def max_drag_to_gravity_above(projectile: str, altitude_km: float = 40.0) -> flo
 
 def angular_momentum_loss_share_below(projectile: str, altitude_km: float = 20.0) -> float:
     """Share of the ascent's loss of specific angular momentum spent below ``altitude_km``."""
-    ascent = _ascent(reference_3dof(projectile))
-    momentum = ascent.specific_angular_momentum_m2_s.to_numpy()
-    at = np.interp(altitude_km * 1e3, ascent.altitude_m, momentum)
-    return float((momentum[0] - at) / (momentum[0] - momentum[-1]))
+    return loss_share_below(reference_3dof(projectile), altitude_km)
 
 
 def angular_momentum_change_above(projectile: str, altitude_km: float = 40.0) -> float:

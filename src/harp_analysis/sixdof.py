@@ -103,6 +103,8 @@ __all__ = [
     "RigidBodyModel",
     "rigid_body_model",
     "rigid_body_launch",
+    "launch_state",
+    "flight_table",
     "appendix_b_derivatives",
     "no_roll_derivatives",
     "trajectory_table",
@@ -505,6 +507,64 @@ def rigid_body_launch(launch: Launch, engine: str, density_altitude: str) -> Rig
     return rigid_body_model(projectile, launch.atmosphere, wind, density_altitude)
 
 
+def launch_state(launch: Launch) -> np.ndarray:
+    """The 12 states at the gun (:data:`STATE_NAMES`): the flat frame's origin, psi = phi = 0,
+    theta = the elevation, body velocity [speed, 0, 0], roll rate = the launch's spin."""
+    return np.array(
+        [
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            launch.elevation_rad,
+            0.0,
+            launch.speed_m_s,
+            0.0,
+            0.0,
+            launch.spin_rad_s,
+            0.0,
+            0.0,
+        ]
+    )
+
+
+def flight_table(
+    model: RigidBodyModel,
+    solution,
+    launch: Launch,
+    engine: str,
+    *,
+    output_step_s: float,
+    max_time_s: float,
+    **metadata,
+) -> pd.DataFrame:
+    """A rigid-body solve_ivp flight (events: impact first, apogee second) as the shared table
+    every ``output_step_s`` and at the end, with the shared metadata
+    (:func:`harp_analysis.trajectory.describe`)."""
+    end = float(solution.t[-1])
+    times = np.append(np.arange(0.0, end, output_step_s), end)
+    frame = trajectory_table(model, times, solution.sol(times))
+    highest = None
+    if solution.t_events[1].size:
+        top = trajectory_table(model, solution.t_events[1][:1], solution.y_events[1][:1].T)
+        highest = (
+            float(solution.t_events[1][0]),
+            float(top.altitude_m.iloc[0]),
+            float(top.ground_range_m.iloc[0]),
+        )
+    return describe(
+        frame,
+        engine=engine,
+        launch=launch,
+        apogee=highest,
+        impact=solution.status == 1,
+        rhs_evaluations=solution.nfev,
+        steps=solution.t.size - 1,
+        max_time_s=max_time_s,
+        **metadata,
+    )
+
+
 def simulate_6dof(
     launch: Launch,
     *,
@@ -537,7 +597,6 @@ def simulate_6dof(
     rtol = check_range(finite_scalar(rtol, "rtol"), "rtol", low=1e-13, high=1e-3)
     max_time = positive_scalar(max_time_s, "max_time_s", "s")
     step = positive_scalar(output_step_s, "output_step_s", "s")
-    elevation, speed, spin = launch.elevation_deg, launch.speed_m_s, launch.spin_rad_s
 
     def impact(t, y):
         return math.sqrt(y[0] ** 2 + y[1] ** 2 + (_R - y[2]) ** 2) - _R
@@ -555,9 +614,7 @@ def simulate_6dof(
     impact.terminal, impact.direction = True, -1  # type: ignore[attr-defined]
     apogee.direction = -1  # type: ignore[attr-defined]
     singular_pitch.terminal, singular_pitch.direction = True, -1  # type: ignore[attr-defined]
-    y0 = np.array(
-        [0.0, 0.0, 0.0, 0.0, math.radians(elevation), 0.0, speed, 0.0, 0.0, spin, 0.0, 0.0]
-    )
+    y0 = launch_state(launch)
     try:
         solution = solve_ivp(
             model.no_roll,
@@ -583,22 +640,12 @@ def simulate_6dof(
             "of Appendix B's Euler angles"
         )
 
-    end = float(solution.t[-1])
-    times = np.append(np.arange(0.0, end, step), end)
-    frame = trajectory_table(model, times, solution.sol(times))
-    apogee_times = solution.t_events[1]
-    highest = None
-    if apogee_times.size:
-        top = trajectory_table(model, apogee_times[:1], solution.y_events[1][:1].T).iloc[0]
-        highest = (float(apogee_times[0]), float(top.altitude_m), float(top.ground_range_m))
-    return describe(
-        frame,
-        engine="6DOF",
-        launch=launch,
-        apogee=highest,
-        impact=solution.status == 1,
-        rhs_evaluations=solution.nfev,
-        steps=solution.t.size - 1,
+    return flight_table(
+        model,
+        solution,
+        launch,
+        "6DOF",
+        output_step_s=step,
         max_time_s=max_time,
         rtol=rtol,
         density_altitude=density_altitude,
