@@ -6,6 +6,8 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
+KERNELS := $(VENV)/.kernels
+
 .PHONY: figures test lint benchmark clean-venv
 
 $(STAMP): environment.txt pyproject.toml
@@ -15,9 +17,16 @@ $(STAMP): environment.txt pyproject.toml
 		--no-build-isolation --editable .
 	touch $@
 
+# The engines' compiled kernels (numba), built once per version of the sources and cached on
+# disk (harp_analysis.compiled), so that no notebook waits for a compiler.
+$(KERNELS): $(STAMP) $(wildcard src/harp_analysis/*.py)
+	$(BIN)/python -c "from harp_analysis import mks, mlt, sixdof, threedof; \
+		threedof.warm_up(); sixdof.warm_up(); mlt.warm_up(); mks.warm_up()"
+	touch $@
+
 # Figures go to the committed figures/ only here; notebooks run elsewhere write to a scratch
 # folder (harp_analysis.paths.FIGURES_DIR). `make figures FIG=4.11` runs only its notebook.
-figures: $(STAMP)
+figures: $(KERNELS)
 	HARP_ANALYSIS_FIGURES_DIR="$(CURDIR)/figures" $(BIN)/python -m harp_analysis.build \
 		$(if $(FIG),--figure $(FIG))
 
@@ -30,16 +39,17 @@ lint: $(STAMP)
 
 # Notebooks under test save their figures to a scratch folder, never over the committed ones.
 # The figures they draw are then compared with the committed ones, to an image tolerance.
-test: lint
+test: lint $(KERNELS)
 	scratch="$$(mktemp -d)" && \
 	HARP_ANALYSIS_FIGURES_DIR="$$scratch" $(BIN)/python -m pytest -n 2 tests --nbmake notebooks && \
 	HARP_ANALYSIS_REGENERATED_FIGURES="$$scratch" $(BIN)/python -m pytest -q tests/test_figure_images.py
 
-benchmark: $(STAMP)
+benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_atmosphere.py
-	$(BIN)/python benchmarks/bench_trajectories.py
-	$(BIN)/python benchmarks/bench_mks.py
+	$(BIN)/python benchmarks/bench_threedof.py
+	$(BIN)/python benchmarks/bench_sixdof.py
 	$(BIN)/python benchmarks/bench_mlt.py
+	$(BIN)/python benchmarks/bench_mks.py
 
 clean-venv:
 	rm -rf $(VENV)

@@ -309,3 +309,77 @@ def test_simulate_mks_starts_at_the_launch_point_in_the_launch_plane(barbados_sh
         table.ground_range_m.to_numpy(), rel=1e-9, abs=1e-6
     )
     assert radius - earth.RADIUS_M == pytest.approx(table.altitude_m.to_numpy(), abs=1e-6)
+
+
+def test_solution_is_the_printed_form():
+    """u, u' and u'' (evaluated about eq 6.4's angle) are c1 sin + c2 cos + sum A_n e^{-n tau
+    theta} and its derivatives, written out here from the constants."""
+    solution = mks.for_launch(_baseline(20.0, *ELEVATIONS_DEG), n_terms=4, warn=False)
+    theta = np.linspace(0.0, 1.0, 40)[None, :] * solution.impact_angle[:, None]
+    c1, c2, amplitudes, rates = solution.c1, solution.c2, solution.amplitudes, solution.rates
+    decay = amplitudes[:, :, None] * np.exp(-rates[:, :, None] * theta[:, None, :])
+    sin, cos = np.sin(theta), np.cos(theta)
+    printed = (
+        c1 * sin + c2 * cos + decay.sum(axis=1),
+        c1 * cos - c2 * sin - (rates[:, :, None] * decay).sum(axis=1),
+        -c1 * sin - c2 * cos + (rates[:, :, None] ** 2 * decay).sum(axis=1),
+    )
+    computed = (solution.u(theta), solution.du_dtheta(theta), solution.d2u_dtheta2(theta))
+    for ours, theirs in zip(computed, printed):
+        assert np.max(np.abs(ours - theirs)) < 1e-14 * np.max(np.abs(c2))
+
+
+def test_small_angle_sine_and_cosine_are_libms_to_an_ulp():
+    angles = np.concatenate([np.linspace(-1 / 32, 1 / 32, 2001), np.geomspace(1e-12, 0.03, 200)])
+    for angle in angles:
+        sin, cos = mks._sin_cos(angle)
+        assert abs(sin - math.sin(angle)) <= np.spacing(abs(math.sin(angle)))
+        assert abs(cos - math.cos(angle)) <= np.spacing(math.cos(angle))
+
+
+def test_one_launch_of_numbers_equals_one_of_arrays():
+    """Numbers take one compiled call for the constants, apogee and impact; arrays compute the
+    apogee and impact when asked: the same kernels, the same numbers."""
+    numbers = (2157.0, math.radians(65.0), 0.09, 1600.0)
+    one = mks.ModifiedKeplerSolution(*numbers)
+    arrays = mks.ModifiedKeplerSolution(*(np.array([x]) for x in numbers))
+    assert one.single and not arrays.single
+    assert one.apogee_altitude() == arrays.apogee_altitude()[0]
+    assert one.apogee_altitude("eq_6_4") == arrays.apogee_altitude("eq_6_4")[0]
+    assert one.impact_angle == arrays.impact_angle[0]
+    assert one.apogee_angle == arrays.apogee_angle[0]
+
+
+def test_apogee_and_impact_are_where_they_claim():
+    """du/dtheta vanishes at the apogee and u is back at 1/r0 at the impact, to the rounding
+    of the largest term, c3 (Newton's iterations stop where rounding dominates their steps)."""
+    solution = mks.for_launch(_baseline(20.0, *ELEVATIONS_DEG, 89.0), warn=False)
+    apogee, impact = solution.apogee_angle[:, None], solution.impact_angle[:, None]
+    assert np.all(np.abs(solution.du_dtheta(apogee)) < 1e-14 * solution.c3)
+    assert np.all(np.abs(solution.u(impact) - 1 / solution.radius_m) < 1e-14 * solution.c3)
+    assert solution.altitude(apogee)[:, 0] == pytest.approx(solution.apogee_altitude(), rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"speed_m_s": np.array([2000.0, -1.0])}, "speed_m_s"),
+        ({"elevation_rad": np.array([0.8, 2.0])}, "elevation_rad"),
+        ({"beta": np.array([0.1, np.nan])}, "beta"),
+        ({"tau": np.array([500.0, -1.0])}, "tau"),
+        ({"radius_m": np.array([6.4e6, np.inf])}, "radius_m"),
+    ],
+)
+def test_bad_array_input_is_named(kwargs, name):
+    arguments = dict(speed_m_s=2000.0, elevation_rad=0.8, beta=0.1, tau=500.0) | kwargs
+    with pytest.raises(ValueError, match=name):
+        mks.ModifiedKeplerSolution(**arguments)
+
+
+def test_arguments_of_different_lengths_are_refused():
+    with pytest.raises(ValueError, match="one length"):
+        mks.ModifiedKeplerSolution(2000.0, np.array([0.5, 0.8]), np.array([0.1, 0.1, 0.1]), 500.0)
+
+
+def test_warm_up_compiles_the_kernels():
+    mks.warm_up()

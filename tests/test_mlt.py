@@ -423,6 +423,22 @@ def test_flight_table_matches_the_6dof():
     )
 
 
+def test_table_rows_are_the_closed_form_of_their_segment():
+    """The table's rows (the closed forms of eqs L2-L7, compiled) are the same closed forms
+    run by Python, to rounding, across a segment in dense air with lateral motion."""
+    model = sixdof.rigid_body_model(LP, "two_segment", (0.0, 5.0, 0.0), "flat")
+    state = tuple(_air_state(model, 0.8, 0.02, 2.0, -0.75, 0.03, z=-3e3).tolist())
+    segment = mlt._solve_segment(model, state, 0.0, 1000.0 / model.d, "middle", True, False)
+    times = np.linspace(0.0, segment.duration_s(model), 7)
+    rows = mlt._states_at(model, [segment], times)
+    calibres = times * segment.coefficients.speed / model.d
+    python = np.array([segment.at(model, s) for s in calibres]).T
+    assert np.max(np.abs(rows[7:9])) > 1.0  # lateral motion at work
+    # each state to 1e-12 of its largest value across the segment
+    scale = np.max(np.abs(python), axis=1, keepdims=True)
+    assert np.all(np.abs(rows - python) <= 1e-12 * scale)
+
+
 @pytest.mark.parametrize(
     "coefficients_at, per_segment", [("start", 1), ("middle", 2), ("average", 2)]
 )

@@ -300,6 +300,19 @@ def test_fins_spin_the_projectile_to_the_roll_equilibrium(flights):
     )
 
 
+def test_table_mach_and_axial_coefficient_are_each_rows_aerodynamics(flights):
+    """Without wind the air speed is the speed: each row's Mach is it over the speed of sound
+    at the flat altitude (below sea level at the end: the formula unchecked, as the 6DOF reads
+    it), and its axial coefficient is -CX0 - CX2 sin^2(alpha) from Appendix B's table at that
+    Mach (the row's angle of attack; raw tables, numpy)."""
+    flight = flights["calm"]
+    sound = get_atmosphere("two_segment").sound_kernel(flight.altitude_flat_m.to_numpy())
+    np.testing.assert_allclose(flight.mach, flight.speed_m_s / sound, rtol=1e-12)
+    cx0, cx2 = (np.interp(flight.mach, M829.mach, getattr(M829, c)) for c in ("cx0", "cx2"))
+    sin_alpha = np.sin(flight.angle_of_attack_rad)
+    np.testing.assert_allclose(flight.drag_coefficient, -cx0 - cx2 * sin_alpha**2, rtol=1e-12)
+
+
 def test_aerodynamically_stable_flight_is_the_point_mass_3dof(flights):
     """Chapter 2 B: the fin-stabilised projectile keeps a small angle of attack in the air, so
     the 3DOF with the zero-yaw drag -CX0 flies the same trajectory (same spherical air)."""

@@ -29,6 +29,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from .compiled import formula, jit, select
 from .validation import check_choice, check_range, finite_array, finite_scalar
 
 __all__ = [
@@ -99,6 +100,11 @@ def standard_density(altitude_m) -> np.ndarray:
 
 def _standard_density(a):
     grid, log_density, _ = _standard_table()
+    return _table_density(a, grid, log_density)
+
+
+@formula
+def _table_density(a, grid, log_density):
     return np.exp(np.interp(a, grid, log_density))
 
 
@@ -109,6 +115,11 @@ def standard_speed_of_sound(altitude_m) -> np.ndarray:
 
 def _standard_speed_of_sound(a):
     grid, _, temperature = _standard_table()
+    return _table_speed_of_sound(a, grid, temperature)
+
+
+@formula
+def _table_speed_of_sound(a, grid, temperature):
     return np.sqrt(
         _HEAT_CAPACITY_RATIO * DRY_AIR_GAS_CONSTANT_J_KG_K * np.interp(a, grid, temperature)
     )
@@ -126,10 +137,11 @@ def two_segment_density(altitude_m) -> np.ndarray:
     return _two_segment_density(_altitudes(altitude_m))
 
 
+@formula
 def _two_segment_density(a):
     lower = 1.22581 * (1.0 - 0.00002257 * np.minimum(a, _SEGMENT_BREAK_M)) ** 4.256
     upper = 0.37454745 * np.exp(-0.00015682 * (a - _SEGMENT_BREAK_M))
-    return np.where(a > _SEGMENT_BREAK_M, upper, lower)
+    return select(a > _SEGMENT_BREAK_M, upper, lower)
 
 
 def two_segment_speed_of_sound(altitude_m) -> np.ndarray:
@@ -137,26 +149,31 @@ def two_segment_speed_of_sound(altitude_m) -> np.ndarray:
     return _two_segment_speed_of_sound(_altitudes(altitude_m))
 
 
+@formula
 def _two_segment_speed_of_sound(a):
     lower = 14.9390 * np.sqrt(518.4 - 0.01170 * np.minimum(a, _SEGMENT_BREAK_M))
-    return np.where(a > _SEGMENT_BREAK_M, 295.92987, lower)
+    return select(a > _SEGMENT_BREAK_M, 295.92987, lower)
 
 
 # --- Appendix A's three layers (NASA Glenn "Earth Atmosphere Model", metric) -----------------
-def _three_layer_state(a) -> tuple[np.ndarray, np.ndarray]:
-    """Temperature (K) and pressure (kPa) exactly as Appendix A computes them."""
-    a_km = np.asarray(a) / 1000.0
-    troposphere = a_km < 11.0
-    lower_stratosphere = (a_km >= 11.0) & (a_km < 25.0)
-    temperature = np.select(
-        [troposphere, lower_stratosphere],
-        [288.14 - 6.49 * a_km, np.full_like(a_km, -56.46 + 273.1)],
-        141.89 + 2.99 * a_km,
+@formula
+def _three_layer_state(a):
+    """Temperature (K) and pressure (kPa) exactly as Appendix A computes them: troposphere
+    below 11 km, lower stratosphere to 25 km, upper stratosphere above."""
+    a_km = a / 1000.0
+    temperature = select(
+        a_km < 11.0,
+        288.14 - 6.49 * a_km,
+        select(a_km < 25.0, -56.46 + 273.1, 141.89 + 2.99 * a_km),
     )
-    pressure = np.select(
-        [troposphere, lower_stratosphere],
-        [101.29 * (temperature / 288.08) ** 5.256, 22.65 * np.exp(1.73 - 0.157 * a_km)],
-        2.488 * (temperature / 216.6) ** -11.388,
+    pressure = select(
+        a_km < 11.0,
+        101.29 * (temperature / 288.08) ** 5.256,
+        select(
+            a_km < 25.0,
+            22.65 * np.exp(1.73 - 0.157 * a_km),
+            2.488 * (temperature / 216.6) ** -11.388,
+        ),
     )
     return temperature, pressure
 
@@ -166,6 +183,7 @@ def three_layer_density(altitude_m) -> np.ndarray:
     return _three_layer_density(_altitudes(altitude_m))
 
 
+@formula
 def _three_layer_density(a):
     temperature, pressure = _three_layer_state(a)
     return pressure / (0.2869 * temperature)
@@ -176,6 +194,7 @@ def three_layer_speed_of_sound(altitude_m) -> np.ndarray:
     return _three_layer_speed_of_sound(_altitudes(altitude_m))
 
 
+@formula
 def _three_layer_speed_of_sound(a):
     temperature, _ = _three_layer_state(a)
     return np.sqrt(_HEAT_CAPACITY_RATIO * _GAS_CONSTANT_J_KG_K * temperature)
@@ -192,8 +211,13 @@ def exponential_density(
     return rho0 * np.exp(-k * _altitudes(altitude_m))
 
 
+@formula
 def _text_exponential_density(a):
     return SEA_LEVEL_DENSITY_KG_M3 * np.exp(-TEXT_DECAY_CONSTANT_PER_M * a)
+
+
+def _no_density(a):
+    return 0.0 * a
 
 
 @dataclass(frozen=True)
@@ -213,12 +237,48 @@ class AtmosphereModel:
     sound_ceiling_m: float | None = None
     #: Altitudes (m) where the formulas jump or kink; integrators step onto them.
     breakpoints_m: tuple[float, ...] = ()
+    #: The model's number in compiled loops (:func:`air`).
+    code: int = -1
 
     def density(self, altitude_m) -> np.ndarray:
         return self.density_kernel(_altitudes(altitude_m, ceiling_m=self.ceiling_m))
 
     def speed_of_sound(self, altitude_m) -> np.ndarray:
         return self.sound_kernel(_altitudes(altitude_m, ceiling_m=self.sound_ceiling_m))
+
+    def table(self) -> np.ndarray:
+        """What :func:`air` needs besides the altitude: the 1976 standard's grid (m), log
+        density and temperature (K) as rows (3, k); a placeholder (3, 2) for the formulas."""
+        if self.code == US1976:
+            return np.array(_standard_table())
+        return np.zeros((3, 2))
+
+
+# Compiled loops choose the model by number; each runs the formulas above.
+US1976, TWO_SEGMENT, THREE_LAYER, EXPONENTIAL, VACUUM = range(5)
+
+
+@jit(inline=True)
+def air(code, altitude_m, table):
+    """Density (kg/m^3) and speed of sound (m/s) at ``altitude_m`` (one number) of the model
+    numbered ``code`` (:attr:`AtmosphereModel.code`), for compiled loops; ``table`` is the
+    model's :meth:`AtmosphereModel.table`. Unchecked, like the kernels."""
+    if code == US1976:
+        return (
+            _table_density(altitude_m, table[0], table[1]),
+            _table_speed_of_sound(altitude_m, table[0], table[2]),
+        )
+    if code == THREE_LAYER:
+        return (
+            _three_layer_density(altitude_m),
+            _three_layer_speed_of_sound(altitude_m),
+        )
+    sound = _two_segment_speed_of_sound(altitude_m)
+    if code == TWO_SEGMENT:
+        return _two_segment_density(altitude_m), sound
+    if code == EXPONENTIAL:
+        return _text_exponential_density(altitude_m), sound
+    return 0.0, sound
 
 
 _MODELS = {
@@ -232,6 +292,7 @@ _MODELS = {
             _STANDARD_TOP_M,
             86_000.0,
             (11_000.0, 20_000.0, 32_000.0, 47_000.0, 51_000.0, 71_000.0, 86_000.0),
+            code=US1976,
         ),
         AtmosphereModel(
             "two_segment",
@@ -239,6 +300,7 @@ _MODELS = {
             _two_segment_speed_of_sound,
             "eqs 2.1-2.2 as coded in Appendix B",
             breakpoints_m=(_SEGMENT_BREAK_M,),
+            code=TWO_SEGMENT,
         ),
         AtmosphereModel(
             "three_layer",
@@ -246,6 +308,7 @@ _MODELS = {
             _three_layer_speed_of_sound,
             "Appendix A",
             breakpoints_m=(11_000.0, 25_000.0),
+            code=THREE_LAYER,
         ),
         # Eq 3.11 defines only a density; where a simulation needs Mach with it (Fig 4.15) the
         # speed of sound of the simulation's own two-segment model is kept.
@@ -254,13 +317,15 @@ _MODELS = {
             _text_exponential_density,
             _two_segment_speed_of_sound,
             "eq 3.11 with k = 0.117 /km; speed of sound of eqs 2.1-2.2",
+            code=EXPONENTIAL,
         ),
         # No air: drag off, for checks against the closed-form Kepler orbit.
         AtmosphereModel(
             "vacuum",
-            np.zeros_like,
+            _no_density,
             _two_segment_speed_of_sound,
             "no air (density zero); speed of sound of eqs 2.1-2.2 for Mach",
+            code=VACUUM,
         ),
     )
 }

@@ -18,6 +18,7 @@ from typing import Protocol
 
 import numpy as np
 
+from .compiled import formula, jit
 from .validation import check_choice, check_range, finite_array
 
 __all__ = [
@@ -28,21 +29,50 @@ __all__ = [
     "M829",
     "BASELINE_CONE",
     "get_drag_law",
+    "drag_coefficient",
     "DRAG_LAW_NAMES",
 ]
 
 
 class DragLaw(Protocol):
-    """What a projectile's drag law offers: ``law(mach)``, checked, and ``law.evaluate(mach)``,
-    unchecked, for the integration loops."""
+    """What a projectile's drag law offers: ``law(mach)``, checked, ``law.evaluate(mach)``,
+    unchecked, for the integration loops, and its number and ``kernel_parameters()`` for
+    compiled ones (:func:`drag_coefficient`)."""
+
+    code: int  # its number in compiled loops (drag_coefficient)
 
     def __call__(self, mach) -> np.ndarray: ...
 
     def evaluate(self, mach): ...
 
+    def kernel_parameters(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]: ...
+
 
 def _mach(mach) -> np.ndarray:
     return check_range(finite_array(mach, "mach"), "mach", low=0.0)
+
+
+@formula
+def _exponential(mach, a, b, c):
+    return a * np.exp(b * mach) + c
+
+
+@formula
+def _tabulated(mach, table_mach, table_cd):
+    return np.interp(mach, table_mach, table_cd)
+
+
+#: The laws' numbers in compiled loops (:func:`drag_coefficient`).
+EXPONENTIAL_LAW, TABULATED_LAW = 0, 1
+
+
+@jit(inline=True)
+def drag_coefficient(code, mach, parameters, table_mach, table_cd):
+    """Cd at ``mach`` (one number) of the law given by its ``kernel_parameters()``, for
+    compiled loops (unchecked, like ``evaluate``)."""
+    if code == EXPONENTIAL_LAW:
+        return _exponential(mach, parameters[0], parameters[1], parameters[2])
+    return _tabulated(mach, table_mach, table_cd)
 
 
 @dataclass(frozen=True)
@@ -53,8 +83,14 @@ class ExponentialDragLaw:
     b: float
     c: float
 
+    code = EXPONENTIAL_LAW
+
     def evaluate(self, mach):
-        return self.a * np.exp(self.b * mach) + self.c
+        return _exponential(mach, self.a, self.b, self.c)
+
+    def kernel_parameters(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+        """The law as :func:`drag_coefficient` takes it: code, (a, b, c), and no table."""
+        return self.code, np.array([self.a, self.b, self.c]), np.zeros(2), np.zeros(2)
 
     def __call__(self, mach) -> np.ndarray:
         return self.evaluate(_mach(mach))
@@ -76,8 +112,15 @@ class TabulatedDragLaw:
         if finite_array(self.cd, "cd table").shape != mach.shape:
             raise ValueError("cd table must have one value per Mach number")
 
+    code = TABULATED_LAW
+
     def evaluate(self, mach):
-        return np.interp(mach, self.mach, self.cd)
+        return _tabulated(mach, self.mach, self.cd)
+
+    def kernel_parameters(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+        """The law as :func:`drag_coefficient` takes it: code, no parameters, and its table
+        (held at its ends, as ``outside="hold"``: compiled loops do not raise)."""
+        return self.code, np.zeros(3), np.array(self.mach), np.array(self.cd)
 
     def __call__(self, mach) -> np.ndarray:
         mach = _mach(mach)

@@ -20,6 +20,13 @@ factors of Chapter 5 enter as two scales: the driving function's beta is multipl
 ``drive_scale`` (cos mu (Vrel/V)^2, eqs 6.9-6.10) and the decay h_inf = h0 exp(-beta
 ``decay_scale``) by ``decay_scale`` (cos mu, eq 6.14); both are 1 on a non-rotating Earth.
 
+The per-launch work (the constants, the checks of the launch conditions and of escape, eq 6.4's
+apogee, Newton's iterations for the first zero of du/dtheta and for the impact) runs compiled,
+one pass over the launches (:mod:`.compiled`; :func:`warm_up` compiles it ahead of use). The
+conic part is evaluated about eq 6.4's angle theta_6.4 = atan2(-c1, -c2), as
+c1 sin(theta) + c2 cos(theta) = -rho cos(theta - theta_6.4) with rho = sqrt(c1^2 + c2^2): at
+eq 6.4's apogee it takes no sine or cosine, and near it only those of a small angle.
+
 SI units: r in m, u in 1/m, h in m^2/s, k in 1/m (the text's 0.117 /km is 1.17e-4 /m; beta
 and tau are dimensionless only if k and r0, m and A share units).
 """
@@ -28,6 +35,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Sequence
 from functools import cache, cached_property
 
 import numpy as np
@@ -35,6 +43,7 @@ import pandas as pd
 
 from . import earth
 from .atmosphere import SEA_LEVEL_DENSITY_KG_M3, TEXT_DECAY_CONSTANT_PER_M, get_atmosphere
+from .compiled import jit
 from .launch import Launch
 from .trajectory import describe, launch_frame
 from .validation import ModelValidityWarning, check_range, finite_array, finite_scalar
@@ -49,6 +58,7 @@ __all__ = [
     "simulate_mks",
     "BETA_VALIDITY_LIMIT",
     "SENSIBLE_ATMOSPHERE_M",
+    "warm_up",
 ]
 
 #: Chapter 4 B: "a beta value of less than 0.25 is required for a reasonably accurate MKS".
@@ -102,6 +112,264 @@ def decay_rate_tau(
     return decay_constant_per_m * radius_m * np.tan(elevation_rad)
 
 
+@jit
+def _extremes(values):
+    """The least and greatest of ``values`` (not empty), both NaN if any is NaN."""
+    lowest = highest = values[0]
+    for value in values:
+        if math.isnan(value):
+            return math.nan, math.nan
+        lowest, highest = min(lowest, value), max(highest, value)
+    return lowest, highest
+
+
+def _argument(
+    value,
+    name: str,
+    *,
+    low: float | None = None,
+    high: float | None = None,
+    low_inclusive: bool = True,
+    high_inclusive: bool = True,
+    unit: str = "",
+):
+    """``value`` itself if it is a plain number, or a non-empty 1-D float array, inside the
+    interval (the fast path, which looks at the array's least and greatest values); else the
+    validators' float array, which raise naming ``name`` if it is not."""
+    if type(value) in (float, int, np.float64):
+        lowest = highest = value
+    elif (
+        type(value) is np.ndarray
+        and value.dtype == np.float64
+        and value.ndim == 1
+        and value.size
+        and value.flags.c_contiguous
+    ):
+        lowest, highest = _extremes(value)
+    else:
+        lowest = highest = math.nan
+    if (
+        math.isfinite(lowest)
+        and math.isfinite(highest)
+        and (low is None or (lowest >= low if low_inclusive else lowest > low))
+        and (high is None or (highest <= high if high_inclusive else highest < high))
+    ):
+        return value
+    return check_range(
+        finite_array(value, name),
+        name,
+        low=low,
+        high=high,
+        low_inclusive=low_inclusive,
+        high_inclusive=high_inclusive,
+        unit=unit,
+    )
+
+
+# --- compiled kernels -------------------------------------------------------------------------
+# A solution keeps its constants in a table with one row per quantity and one column per launch
+# (rows are contiguous arrays): h0, h_inf, c1, c2, rho = hypot(c1, c2), eq 6.4's apse angle,
+# the asymptotic conic's eccentricity, eq 6.4's apogee altitude, then the amplitudes A_n.
+_H0, _H_INF, _C1, _C2, _RHO, _APSE, _ECCENTRICITY, _APOGEE_6_4, _AMPLITUDES = range(9)
+#: The escape check looks at the angle where the driving terms have died: e^{-tau theta} = e^-20.
+_LATE_DECAY_EXPONENT = 20.0
+#: Newton's iterations stop once a step is below _NEWTON_STEP_RAD, or below _NEWTON_NOISE_RAD
+#: (6 um of range) and no smaller than the step before, or after _NEWTON_ITERATIONS.
+_NEWTON_STEP_RAD = 1e-15
+_NEWTON_NOISE_RAD = 1e-12
+_NEWTON_ITERATIONS = 50
+
+
+@jit
+def _at(values, i):
+    """Launch ``i``'s value of an argument given once for all launches or once for each."""
+    return values[min(i, values.size - 1)]
+
+
+@jit
+def _sin_cos(angle):
+    """sin and cos of ``angle``. Below 1/32 rad (the offsets from the apse where Newton's
+    iterations for the apogee look), Taylor polynomials to x^8, exact to within an ulp: libm
+    takes 8 ns for the pair at any argument, which costs the apogees 4 ns a launch."""
+    if abs(angle) >= 1 / 32:
+        return math.sin(angle), math.cos(angle)
+    x2 = angle * angle
+    sin = angle + angle * x2 * (-1 / 6 + x2 * (1 / 120 + x2 * (-1 / 5040)))
+    cos = 1.0 + x2 * (-1 / 2 + x2 * (1 / 24 + x2 * (-1 / 720 + x2 * (1 / 40320))))
+    return sin, cos
+
+
+@jit
+def _point(table, i, tau, theta):
+    """u, du/dtheta and d2u/dtheta2 of launch ``i`` (column ``i`` of ``table``) at ``theta``.
+
+    The conic part c1 sin(theta) + c2 cos(theta) is written about eq 6.4's angle, the apse:
+    -rho cos(theta - apse), with rho = hypot(c1, c2). The series sum_n A_n e^{-n tau theta}
+    raises one exponential to each power by products."""
+    rho = table[_RHO, i]
+    sin, cos = _sin_cos(theta - table[_APSE, i])
+    decay = math.exp(-tau * theta)
+    terms = slope = curvature = 0.0
+    factor = 1.0  # e^{-n tau theta}
+    for n in range(table.shape[0] - _AMPLITUDES):
+        rate = n * tau
+        term = table[_AMPLITUDES + n, i] * factor
+        terms += term
+        slope -= rate * term
+        curvature += rate * rate * term
+        factor *= decay
+    return -rho * cos + terms, rho * sin + slope, rho * cos + curvature
+
+
+@jit
+def _solve(speed, elevation, beta, tau, radius, drive_scale, decay_scale, table, escapes):
+    """The constants of every launch into its column of ``table``, and whether it escapes
+    (its apogee is then NaN) into ``escapes``; arguments have one value, or one per launch.
+    Returns the index of the first launch whose constants do not reproduce the launch
+    conditions u(0) = 1/r0 and u'(0) = -tan(phi0)/r0 to _LAUNCH_CONDITION_TOLERANCE, or -1."""
+    for i in range(escapes.size):
+        phi, r, t = _at(elevation, i), _at(radius, i), _at(tau, i)
+        sin_phi, cos_phi = math.sin(phi), math.cos(phi)
+        tan_phi = sin_phi / cos_phi
+        h0 = _at(speed, i) * r * cos_phi  # eq 6.13
+        h_inf = h0 * math.exp(-_at(beta, i) * _at(decay_scale, i))  # eq 3.23
+        c3 = np.divide(earth.GM_M3_S2, h_inf * h_inf)  # eq 6.8; inf if h_inf underflows
+        # A_n = c3 (-2 beta)^n / (n! (1 + n^2 tau^2)): eqs 6.8-6.10 for n = 0, 1, 2
+        ratio = -2 * _at(beta, i) * _at(drive_scale, i)
+        power = factorial = 1.0
+        total = moment = constant = 0.0  # sum_n A_n, sum_n n tau A_n, terms that do not decay
+        for n in range(table.shape[0] - _AMPLITUDES):
+            rate = n * t
+            amplitude = c3 * power / (factorial * (1 + rate * rate))
+            table[_AMPLITUDES + n, i] = amplitude
+            total += amplitude
+            moment += rate * amplitude
+            if rate == 0:
+                constant += amplitude
+            power *= ratio
+            factorial *= n + 1
+        inverse_radius = 1 / r  # u(0)
+        c2 = inverse_radius - total
+        c1 = -tan_phi * inverse_radius + moment
+        # At a grazing elevation beta (eq 3.22) makes h_inf underflow, or the constants so
+        # large that they cancel to no significant digit: u(0) and u'(0) say so (NaN fails).
+        tolerance = _LAUNCH_CONDITION_TOLERANCE * inverse_radius
+        if not (
+            abs(c2 + total - inverse_radius) <= tolerance
+            and abs(c1 - moment + tan_phi * inverse_radius) <= tolerance
+        ):
+            return i
+        table[_H0, i], table[_H_INF, i], table[_C1, i], table[_C2, i] = h0, h_inf, c1, c2
+        # sqrt, not hypot (3 ns more): c1 and c2 are far from overflowing once they pass
+        table[_RHO, i] = rho = math.sqrt(c1 * c1 + c2 * c2)
+        table[_APSE, i] = apse = math.atan2(-c1, -c2)  # eq 6.4, where the conic is least
+        table[_ECCENTRICITY, i] = eccentricity = np.divide(rho, constant)
+        escapes[i] = False
+        if eccentricity >= 1.0:  # an open conic: escapes if aloft and climbing once the drive died
+            late = _LATE_DECAY_EXPONENT / t if t > 0 else 0.0
+            u, slope, _ = _point(table, i, t, late)
+            escapes[i] = u <= inverse_radius and slope < 0
+        table[_APOGEE_6_4, i] = (
+            math.nan if escapes[i] else np.divide(1.0, _point(table, i, t, apse)[0]) - r
+        )  # eq 6.5
+    return -1
+
+
+@jit
+def _converged(step, previous):
+    """Whether Newton's iteration has converged, given its last two steps (rad). It converges
+    quadratically until rounding dominates the function it zeroes; from there the steps
+    stop shrinking (the impact's u - 1/r0 cancels to a few 1e-15 rad) and go on no further."""
+    return abs(step) < _NEWTON_STEP_RAD or _NEWTON_NOISE_RAD > abs(step) >= abs(previous)
+
+
+@jit
+def _apogees(table, tau, radius, escapes, angle, altitude):
+    """Every launch's first zero of du/dtheta into ``angle``, by Newton's iteration from eq
+    6.4's angle, and the altitude there into ``altitude`` (NaN for a launch that escapes);
+    the index of the first launch whose iteration leaves the finite numbers, or -1."""
+    for i in range(escapes.size):
+        angle[i] = altitude[i] = math.nan
+        if escapes[i]:
+            continue
+        rate, theta, step = _at(tau, i), table[_APSE, i], math.inf
+        for _ in range(_NEWTON_ITERATIONS):
+            u, slope, curvature = _point(table, i, rate, theta)
+            previous, step = step, np.divide(slope, curvature)
+            theta -= step
+            if not math.isfinite(theta):
+                return i
+            if _converged(step, previous):
+                break  # where u' = 0 a step this small moves u less than its rounding
+        if not _converged(step, previous):
+            u = _point(table, i, rate, theta)[0]
+        angle[i], altitude[i] = theta, np.divide(1.0, u) - _at(radius, i)
+    return -1
+
+
+@jit
+def _impacts(table, tau, radius, escapes, apogee_angle, angle):
+    """Every launch's return to its launch radius into ``angle``, by Newton's iteration from
+    twice its apogee angle (a symmetric conic's return; NaN for a launch that escapes); the
+    index of the first launch whose iteration leaves the finite numbers, or -1."""
+    for i in range(escapes.size):
+        angle[i] = math.nan
+        if escapes[i]:
+            continue
+        rate, inverse_radius = _at(tau, i), 1 / _at(radius, i)
+        theta, step = 2 * apogee_angle[i], math.inf
+        for _ in range(_NEWTON_ITERATIONS):
+            u, slope, _ = _point(table, i, rate, theta)
+            previous, step = step, np.divide(u - inverse_radius, slope)
+            theta -= step
+            if not math.isfinite(theta):
+                return i
+            if _converged(step, previous):
+                break
+        angle[i] = theta
+    return -1
+
+
+@jit
+def _solve_through_impact(
+    speed, elevation, beta, tau, radius, drive_scale, decay_scale, table, escapes, apogee, impact
+):
+    """:func:`_solve`, then :func:`_apogees` into ``apogee`` (angle, altitude) and
+    :func:`_impacts` into ``impact``, in one call. Returns how far it got: 0 if the constants
+    fail, 1 if the apogee's iteration does, 2 if the impact's does, 3 if none fails."""
+    if _solve(speed, elevation, beta, tau, radius, drive_scale, decay_scale, table, escapes) >= 0:
+        return 0
+    if _apogees(table, tau, radius, escapes, apogee[0], apogee[1]) >= 0:
+        return 1
+    if _impacts(table, tau, radius, escapes, apogee[0], impact) >= 0:
+        return 2
+    return 3
+
+
+@jit
+def _evaluate(table, tau, theta, out):
+    """u, du/dtheta and d2u/dtheta2 into ``out`` (3, rows, k) at ``theta`` (rows or 1, k), for
+    launch i on row i (or for the single launch on every row)."""
+    for i in range(out.shape[1]):
+        launch, row = min(i, table.shape[1] - 1), min(i, theta.shape[0] - 1)
+        rate = _at(tau, launch)
+        for j in range(out.shape[2]):
+            out[0, i, j], out[1, i, j], out[2, i, j] = _point(table, launch, rate, theta[row, j])
+
+
+@jit
+def _outside_validity(beta, radius, escapes, apogee):
+    """Whether any launch escapes, has beta above BETA_VALIDITY_LIMIT, an apogee (NaN if it
+    escapes) beyond the Earth's sphere of influence, or one inside the sensible atmosphere."""
+    escaping = high_drag = beyond = low = False
+    for i in range(escapes.size):
+        escaping |= escapes[i]
+        high_drag |= _at(beta, i) > BETA_VALIDITY_LIMIT
+        beyond |= apogee[i] + _at(radius, i) > EARTH_SPHERE_OF_INFLUENCE_M
+        low |= apogee[i] <= SENSIBLE_ATMOSPHERE_M
+    return escaping, high_drag, beyond, low
+
+
 class ModifiedKeplerSolution:
     """The MKS of one or many launches (arguments broadcast to shape (m,)).
 
@@ -110,6 +378,9 @@ class ModifiedKeplerSolution:
     ``asymptotic_eccentricity`` (m,) is that of the conic the solution ends on, and
     ``escapes`` (m,) marks launches that leave on an open one: their apogee and impact are NaN.
     Constants that cannot reproduce the launch conditions (a grazing elevation) raise.
+
+    The per-launch work (constants, checks, apogee, impact) runs compiled, one pass over the
+    launches (:func:`warm_up` compiles it ahead of use).
     """
 
     def __init__(
@@ -125,38 +396,45 @@ class ModifiedKeplerSolution:
         decay_scale=1.0,
         warn: bool = True,
     ):
-        speed = check_range(
-            finite_array(speed_m_s, "speed_m_s"),
-            "speed_m_s",
-            low=0.0,
-            low_inclusive=False,
-            unit="m/s",
-        )
-        elevation = check_range(
-            finite_array(elevation_rad, "elevation_rad"),
-            "elevation_rad",
-            low=0.0,
-            low_inclusive=False,
-            high=math.pi / 2,
-            high_inclusive=False,
-            unit="rad",
-        )
-        beta = check_range(finite_array(beta, "beta"), "beta", low=0.0)
-        tau = check_range(finite_array(tau, "tau"), "tau", low=0.0)
-        radius = check_range(
-            finite_array(radius_m, "radius_m"), "radius_m", low=0.0, low_inclusive=False, unit="m"
-        )
-        n_terms = check_n_terms(n_terms)
-        arrays = np.broadcast_arrays(
-            speed,
-            elevation,
-            beta,
-            tau,
-            radius,
-            finite_array(drive_scale, "drive_scale"),
-            finite_array(decay_scale, "decay_scale"),
-        )
-        self.single = arrays[0].ndim == 0
+        values = [
+            _argument(speed_m_s, "speed_m_s", low=0.0, low_inclusive=False, unit="m/s"),
+            _argument(
+                elevation_rad,
+                "elevation_rad",
+                low=0.0,
+                low_inclusive=False,
+                high=math.pi / 2,
+                high_inclusive=False,
+                unit="rad",
+            ),
+            _argument(beta, "beta", low=0.0),
+            _argument(tau, "tau", low=0.0),
+            _argument(radius_m, "radius_m", low=0.0, low_inclusive=False, unit="m"),
+        ]
+        self.n_terms = n_terms if type(n_terms) is int and n_terms >= 1 else check_n_terms(n_terms)
+        values += [_argument(drive_scale, "drive_scale"), _argument(decay_scale, "decay_scale")]
+        # The kernels take each argument once (a number) or once per launch, shape (1,) or
+        # (m,); the attributes are (m, 1). A single launch's are rows of one array.
+        self._arguments: Sequence[np.ndarray] | np.ndarray
+        columns: Sequence[np.ndarray] | np.ndarray
+        if np.ndarray in map(type, values):
+            self._arguments = tuple(np.array(value, dtype=float, ndmin=1) for value in values)
+            lengths = {value.shape for value in self._arguments} - {(1,)}
+            if len(lengths) > 1 or any(len(length) > 1 for length in lengths):
+                raise ValueError(
+                    "the launches' arguments must be numbers or 1-D arrays of one length; got "
+                    f"shapes {[np.shape(value) for value in values]}"
+                )
+            self.single = all(np.ndim(value) == 0 for value in values)
+            count = lengths.pop()[0] if lengths else 1
+            columns = tuple(
+                (value if value.size == count else np.broadcast_to(value, (count,)))[:, None]
+                for value in self._arguments
+            )
+        else:  # one launch of plain numbers
+            self.single, count = True, 1
+            columns = np.array(values, dtype=float).reshape(len(values), 1, 1)
+            self._arguments = columns[:, 0]
         (
             self.speed_m_s,
             self.elevation_rad,
@@ -165,66 +443,74 @@ class ModifiedKeplerSolution:
             self.radius_m,
             self.drive_scale,
             self.decay_scale,
-        ) = (np.atleast_1d(a).astype(float)[:, None] for a in arrays)
-        self.n_terms = n_terms
-        self.h0 = self.speed_m_s * self.radius_m * np.cos(self.elevation_rad)  # eq 6.13
-        n = np.arange(n_terms)
-        factorial = np.array([math.factorial(i) for i in n], dtype=float)
-        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-            self.h_inf = self.h0 * np.exp(-self.beta * self.decay_scale)  # eq 3.23
-            self.c3 = earth.GM_M3_S2 / self.h_inf**2  # eq 6.8
-            self.amplitudes = (
-                self.c3
-                * (-2 * self.beta * self.drive_scale) ** n
-                / (factorial * (1 + (n * self.tau) ** 2))
-            )  # (m, N)
-            self.rates = n * self.tau  # (m, N)
-            self.c2 = 1 / self.radius_m - self.amplitudes.sum(axis=1, keepdims=True)
-            self.c1 = -np.tan(self.elevation_rad) / self.radius_m + (
-                self.rates * self.amplitudes
-            ).sum(axis=1, keepdims=True)
-        self._check_launch_conditions()
-        self.asymptotic_eccentricity, self.escapes = self._asymptotic_conic()
+        ) = columns
+        self._table = np.empty((_AMPLITUDES + self.n_terms, count))
+        self.escapes = np.empty(count, dtype=bool)
+        if self.single:  # a kernel's call costs more than the apogee's and impact's iterations
+            apogee, impact = np.empty((2, 1)), np.empty(1)
+            reached = _solve_through_impact(
+                *self._arguments, self._table, self.escapes, apogee, impact
+            )
+            failed = 0 if reached == 0 else -1
+            # cached_property's own storage; a failed iteration raises when it is asked for
+            if reached >= 2:
+                self.__dict__["_first_zero_apogee"] = apogee
+            if reached == 3:
+                self.__dict__["impact_angle"] = impact[0]
+        else:
+            failed = _solve(*self._arguments, self._table, self.escapes)
+        if failed >= 0:
+            raise ValueError(
+                f"the MKS has no usable closed form at elevation_rad = "
+                f"{self.elevation_rad[failed, 0]:.6g} "
+                f"({math.degrees(self.elevation_rad[failed, 0]):.6g} deg): beta = "
+                f"{self.beta[failed, 0]:.4g} (eq 3.22, which grows as 1/sin of the elevation) "
+                "makes h_inf = h0 exp(-beta) underflow or its constants cancel to no "
+                "significant digit; raise the elevation"
+            )
         if warn:
             self._warn_outside_validity()
 
-    def _check_launch_conditions(self):
-        """ValueError naming the elevation if the constants do not reproduce u(0) = 1/r0 and
-        u'(0) = -tan(phi0)/r0: at a very low elevation beta (eq 3.22, proportional to
-        1/sin(phi0)) makes h_inf = h0 exp(-beta) underflow, or c3 and the amplitudes so large
-        that they cancel to no significant digit; a NaN would otherwise surface deep inside."""
-        scale = 1 / self.radius_m[:, 0]
-        with np.errstate(invalid="ignore", over="ignore"):
-            u0 = self.c2[:, 0] + self.amplitudes.sum(axis=1)
-            slope0 = self.c1[:, 0] - (self.rates * self.amplitudes).sum(axis=1)
-            error = np.maximum(
-                np.abs(u0 - scale),
-                np.abs(slope0 + np.tan(self.elevation_rad[:, 0]) * scale),
-            )
-            bad = ~(error <= _LAUNCH_CONDITION_TOLERANCE * scale)
-        if np.any(bad):
-            i = int(np.argmax(bad))
-            raise ValueError(
-                f"the MKS has no usable closed form at elevation_rad = "
-                f"{self.elevation_rad[i, 0]:.6g} ({math.degrees(self.elevation_rad[i, 0]):.6g} "
-                f"deg): beta = {self.beta[i, 0]:.4g} (eq 3.22, which grows as 1/sin of the "
-                "elevation) makes h_inf = h0 exp(-beta) underflow or its constants cancel "
-                "to no significant digit; raise the elevation"
-            )
+    # --- the constants, shapes (m, 1) unless said ------------------------------------------
+    @property
+    def h0(self):
+        """Launch angular momentum h0 = V r0 cos(phi0) (m^2/s), eq 6.13."""
+        return self._table[_H0, :, None]
 
-    def _asymptotic_conic(self):
-        """The eccentricity of the conic u = K + c1 sin(theta) + c2 cos(theta) that the solution
-        becomes once the driving terms have died out (K = c3 = GM/h_inf^2, the asymptotic
-        angular momentum's; the whole series if tau = 0), and whether the launch escapes:
-        that conic is open (e >= 1) and the flight is still aloft and climbing when the
-        driving terms have died (e^{-tau theta} = e^-20), so it never comes back."""
-        constant = np.where(self.rates == 0, self.amplitudes, 0.0).sum(axis=1)
-        eccentricity = np.hypot(self.c1, self.c2)[:, 0] / constant
-        tau = self.tau[:, 0]
-        late = np.where(tau > 0, 20 / np.where(tau > 0, tau, 1.0), 0.0)[:, None]
-        u, slope, _ = self._solution(late)
-        aloft = u[:, 0] <= 1 / self.radius_m[:, 0]
-        return eccentricity, (eccentricity >= 1.0) & aloft & (slope[:, 0] < 0)
+    @property
+    def h_inf(self):
+        """Asymptotic angular momentum h_inf = h0 exp(-beta decay_scale) (m^2/s), eq 3.23."""
+        return self._table[_H_INF, :, None]
+
+    @property
+    def c3(self):
+        """c3 = GM / h_inf^2 (1/m), eq 6.8: the amplitude of the series' first term."""
+        return self._table[_AMPLITUDES, :, None]
+
+    @property
+    def amplitudes(self):
+        """A_n, shape (m, N): the amplitudes of the series' terms e^{-n tau theta}."""
+        return self._table[_AMPLITUDES:].T
+
+    @property
+    def rates(self):
+        """n tau, shape (m, N): the decay rates of the series' terms."""
+        return np.arange(self.n_terms) * self.tau
+
+    @property
+    def c1(self):
+        """c1 (1/m) of u = c1 sin(theta) + c2 cos(theta) + ..., set by u'(0) = -tan(phi0)/r0."""
+        return self._table[_C1, :, None]
+
+    @property
+    def c2(self):
+        """c2 (1/m), set by u(0) = 1/r0."""
+        return self._table[_C2, :, None]
+
+    @property
+    def asymptotic_eccentricity(self):
+        """Eccentricity (m,) of the conic the solution ends on."""
+        return self._table[_ECCENTRICITY]
 
     # --- the solution and its derivatives ----------------------------------------------------
     def _out(self, value):
@@ -234,27 +520,19 @@ class ModifiedKeplerSolution:
         theta = finite_array(theta_rad, "theta_rad")
         return theta if theta.ndim == 2 else np.atleast_1d(theta)[None, :]
 
-    def _terms(self, theta):
-        """sum_n A_n e^{-n tau theta} and its first two derivatives, shapes (m, k)."""
-        decay = np.exp(-self.rates[:, :, None] * theta[:, None, :])  # (m, N, k)
-        a = self.amplitudes[:, :, None]
-        r = self.rates[:, :, None]
-        return (
-            np.sum(a * decay, axis=1),
-            np.sum(-r * a * decay, axis=1),
-            np.sum(r * r * a * decay, axis=1),
-        )
-
     def _solution(self, theta_rad):
         """u, du/dtheta and d2u/dtheta2 at ``theta_rad``, shapes (m, k), from one evaluation."""
-        theta = self._theta(theta_rad)
-        sin, cos = np.sin(theta), np.cos(theta)
-        terms, slope, curvature = self._terms(theta)
-        return (
-            self.c1 * sin + self.c2 * cos + terms,
-            self.c1 * cos - self.c2 * sin + slope,
-            -self.c1 * sin - self.c2 * cos + curvature,
-        )
+        theta = np.ascontiguousarray(self._theta(theta_rad))
+        launches = self._table.shape[1]
+        rows = max(launches, theta.shape[0])
+        if {launches, theta.shape[0]} - {1, rows}:
+            raise ValueError(
+                f"theta_rad has {theta.shape[0]} rows for {launches} launches; "
+                "expected one row, or one per launch"
+            )
+        out = np.empty((3, rows, theta.shape[1]))
+        _evaluate(self._table, self._arguments[3], theta, out)
+        return out
 
     def u(self, theta_rad):
         """u = 1/r (1/m) at angular range ``theta_rad`` (eq 3.30's solution)."""
@@ -302,32 +580,32 @@ class ModifiedKeplerSolution:
         principal branch; a launch whose horizontal speed exceeds the circular speed has
         c2 > 0 and its apogee beyond a quarter of the way round, where the principal branch
         would give the perigee's direction instead."""
-        return self._out(np.arctan2(-self.c1, -self.c2)[:, 0])
+        return self._out(self._table[_APSE].copy())
 
     @cached_property
+    def _first_zero_apogee(self):
+        """(angle, altitude) of every launch's first zero of du/dtheta, shapes (m,)."""
+        angle, altitude = np.empty((2, self._table.shape[1]))
+        failed = _apogees(
+            self._table, self._arguments[3], self._arguments[4], self.escapes, angle, altitude
+        )
+        self._newton_failed("apogee", failed)
+        return angle, altitude
+
+    @property
     def apogee_angle(self):
         """The first zero of du/dtheta (rad), by Newton iteration from eq 6.4; NaN for a launch
         that escapes (:attr:`escapes`)."""
-        flying = ~self.escapes[:, None]
-        theta = np.where(flying, np.atleast_1d(self.apogee_angle_eq_6_4)[:, None], 0.0)
-        for _ in range(50):
-            step = self._rows(self.du_dtheta, theta) / self._rows(self.d2u_dtheta2, theta)
-            theta = self._newton(theta, np.where(flying, step, 0.0), "apogee")
-            if np.all(np.abs(step[flying]) < 1e-15):
-                break
-        return self._out(np.where(flying, theta, np.nan)[:, 0])
+        return self._out(self._first_zero_apogee[0])
 
-    def _newton(self, theta, step, what):
-        """``theta - step``, or ValueError naming the elevation if Newton's iteration for
-        ``what`` has left the finite numbers."""
-        theta = theta - step
-        if not np.all(np.isfinite(theta)):
-            i = int(np.argmax(~np.isfinite(theta[:, 0])))
+    def _newton_failed(self, what, index):
+        """ValueError naming the elevation if Newton's iteration for ``what`` has left the
+        finite numbers at launch ``index`` (-1: it has not)."""
+        if index >= 0:
             raise ValueError(
                 f"the MKS {what} could not be found at elevation_rad = "
-                f"{self.elevation_rad[i, 0]:.6g}, beta = {self.beta[i, 0]:.4g}"
+                f"{self.elevation_rad[index, 0]:.6g}, beta = {self.beta[index, 0]:.4g}"
             )
-        return theta
 
     def _rows(self, function, theta_column):
         value = function(theta_column)
@@ -336,28 +614,29 @@ class ModifiedKeplerSolution:
     def apogee_altitude(self, method: str = "first_zero"):
         """Apogee height (m): at the first zero of du/dtheta, or at eq 6.4's angle (eq 6.5);
         NaN for a launch that escapes (:attr:`escapes`)."""
-        if method not in ("first_zero", "eq_6_4"):
+        if method == "first_zero":
+            altitude = self._first_zero_apogee[1]
+        elif method == "eq_6_4":
+            altitude = self._table[_APOGEE_6_4]
+        else:
             raise ValueError(f"unknown method {method!r}; expected 'first_zero' or 'eq_6_4'")
-        angle = self.apogee_angle if method == "first_zero" else self.apogee_angle_eq_6_4
-        flying = ~self.escapes[:, None]
-        theta = np.where(flying, np.atleast_1d(angle)[:, None], 0.0)
-        height = 1 / self._rows(self.u, theta) - self.radius_m
-        return self._out(np.where(flying, height, np.nan)[:, 0])
+        return altitude[0] if self.single else altitude.copy()
 
     @cached_property
     def impact_angle(self):
         """Angular range (rad) where the descending solution returns to the launch radius; NaN
         for a launch that escapes (:attr:`escapes`)."""
-        flying = ~self.escapes[:, None]
-        # a symmetric conic's return; Newton refines it
-        theta = np.where(flying, 2 * np.atleast_1d(self.apogee_angle)[:, None], 0.0)
-        for _ in range(50):
-            u = self._rows(self.u, theta) - 1 / self.radius_m
-            step = np.where(flying, u / self._rows(self.du_dtheta, theta), 0.0)
-            theta = self._newton(theta, step, "impact")
-            if np.all(np.abs(step[flying]) < 1e-15):
-                break
-        return self._out(np.where(flying, theta, np.nan)[:, 0])
+        angle = np.empty(self._table.shape[1])
+        failed = _impacts(
+            self._table,
+            self._arguments[3],
+            self._arguments[4],
+            self.escapes,
+            self._first_zero_apogee[0],
+            angle,
+        )
+        self._newton_failed("impact", failed)
+        return self._out(angle)
 
     def sample(self, theta_rad, order: int = 3) -> dict:
         """A whole trajectory at the (sorted) angles ``theta_rad`` in one pass: arrays of
@@ -383,7 +662,7 @@ class ModifiedKeplerSolution:
         the time at a single far angle and one three-point interval spans the whole flight:
         pass the grid and read its last value instead."""
         theta = self._theta(theta_rad)
-        theta = np.broadcast_to(theta, (self.h0.shape[0], theta.shape[1]))
+        theta = np.broadcast_to(theta, (self._table.shape[1], theta.shape[1]))
         edges = np.concatenate([np.zeros((theta.shape[0], 1)), theta], axis=1)
         if np.any(np.diff(edges, axis=1) < 0):
             raise ValueError("theta_rad must be sorted and non-negative")
@@ -397,7 +676,11 @@ class ModifiedKeplerSolution:
 
     # --- validity ------------------------------------------------------------------------------
     def _warn_outside_validity(self):
-        if np.any(self.escapes):
+        apogee = self._first_zero_apogee[1]  # NaN, failing every comparison, if it escapes
+        escaping, high_drag, beyond, low = _outside_validity(
+            self._arguments[2], self._arguments[4], self.escapes, apogee
+        )
+        if escaping:
             i = int(np.argmax(self.escapes))
             warnings.warn(
                 f"MKS launch at {self.speed_m_s[i, 0]:.6g} m/s escapes: the asymptotic angular "
@@ -407,26 +690,25 @@ class ModifiedKeplerSolution:
                 ModelValidityWarning,
                 stacklevel=3,
             )
-        if np.any(self.beta > BETA_VALIDITY_LIMIT):
+        if high_drag:
             warnings.warn(
                 f"MKS beta = {self.beta.max():.3g} > {BETA_VALIDITY_LIMIT}: the text finds "
                 "the solution inaccurate for such high-drag projectiles (Ch. 4 B)",
                 ModelValidityWarning,
                 stacklevel=3,
             )
-        apogee = np.atleast_1d(self.apogee_altitude())[~self.escapes]
-        beyond = apogee + self.radius_m[~self.escapes, 0] > EARTH_SPHERE_OF_INFLUENCE_M
-        if np.any(beyond):
+        if beyond:
+            far = apogee + self.radius_m[:, 0] > EARTH_SPHERE_OF_INFLUENCE_M
             warnings.warn(
-                f"MKS apogee {apogee[beyond].max() / 1e3:.4g} km lies beyond the Earth's sphere "
+                f"MKS apogee {apogee[far].max() / 1e3:.4g} km lies beyond the Earth's sphere "
                 f"of influence ({EARTH_SPHERE_OF_INFLUENCE_M / 1e3:.4g} km from its centre): "
                 "a near-escape launch (eccentricity "
-                f"{self.asymptotic_eccentricity[~self.escapes][beyond].max():.4g}) that the "
+                f"{self.asymptotic_eccentricity[far].max():.4g}) that the "
                 "Sun and Moon perturb, which no Kepler orbit about the Earth describes",
                 ModelValidityWarning,
                 stacklevel=3,
             )
-        if np.any(~(apogee > SENSIBLE_ATMOSPHERE_M)):
+        if low:
             warnings.warn(
                 f"MKS apogee {np.nanmin(apogee) / 1e3:.1f} km does not leave the "
                 f"sensible atmosphere (below {SENSIBLE_ATMOSPHERE_M / 1e3:g} km), where "
@@ -590,3 +872,11 @@ def simulate_mks(
         max_time_s=math.inf,
         n_terms=n_terms,
     )
+
+
+def warm_up() -> None:
+    """Compile the MKS's kernels now (or load them from the on-disk cache), not at first use."""
+    one = ModifiedKeplerSolution(2000.0, 0.8, 0.1, 500.0)
+    one.sample(np.linspace(0.0, one.impact_angle, 3))
+    many = ModifiedKeplerSolution(2000.0, np.array([0.8, 0.9]), 0.1, 500.0)
+    many.time(many.impact_angle[:, None])

@@ -66,10 +66,12 @@ between the two come from linear theory alone.
 
 Cost: segments are sequential (each starts where the last ended), so there is nothing to
 vectorise across them, and a segment's internals are 2x2 complex closed forms on which numpy's
-per-call overhead would exceed the arithmetic: they run as Python scalars. One segment (two
+per-call overhead would exceed the arithmetic: they run as Python scalars, which also lets
+:mod:`harp_analysis.effort` count the segment loop call by call (Fig 4.7). One segment (two
 coefficient evaluations, three closed-form propagations, the impact and apogee checks) takes
-about 0.1 ms; a whole HP flight at 1 km about 0.05 s, of which a third is the output table
-(``make benchmark`` measures it against the 3DOF and 6DOF at each segment length).
+about 40 us; the table's rows, after the loop, run the same closed forms compiled
+(:mod:`.compiled`; :func:`warm_up`). A whole HP flight at 1 km takes about 14 ms (``make
+benchmark`` measures it against the 3DOF and 6DOF at each segment length).
 
 Consequences, each checked in ``tests/test_mlt.py``:
 
@@ -101,16 +103,19 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from . import earth, kepler
-from .launch import Launch
+from .compiled import formula, jit
+from .launch import HP_CHAPTER_2, Launch
 from .sixdof import (
     DENSITY_ALTITUDES,
+    RigidBodyKernel,
     RigidBodyModel,
+    altitude_and_range,
     flight_table,
     launch_state,
     rigid_body_launch,
     trajectory_table,
 )
-from .trajectory import describe
+from .trajectory import TruncatedFlightWarning, describe
 from .validation import (
     ModelValidityWarning,
     check_choice,
@@ -133,6 +138,7 @@ __all__ = [
     "simulate_mlt",
     "linear_theory_derivatives",
     "simulate_linear_theory_limit",
+    "warm_up",
 ]
 
 SEGMENT_LENGTH_M = 1000.0
@@ -171,13 +177,25 @@ def _rotation(theta: float, psi: float) -> tuple:
     return ((ct * cp, ct * sp, -st), (-sp, cp, 0.0), (st * cp, st * sp, ct))
 
 
+@formula
 def _apply(rows: tuple, vector) -> tuple:
-    return tuple(row[0] * vector[0] + row[1] * vector[1] + row[2] * vector[2] for row in rows)
+    first, second, third = rows
+    x, y, z = vector
+    return (
+        first[0] * x + first[1] * y + first[2] * z,
+        second[0] * x + second[1] * y + second[2] * z,
+        third[0] * x + third[1] * y + third[2] * z,
+    )
 
 
+@formula
 def _apply_transpose(rows: tuple, vector) -> tuple:
-    return tuple(
-        rows[0][j] * vector[0] + rows[1][j] * vector[1] + rows[2][j] * vector[2] for j in range(3)
+    first, second, third = rows
+    x, y, z = vector
+    return (
+        first[0] * x + second[0] * y + third[0] * z,
+        first[1] * x + second[1] * y + third[1] * z,
+        first[2] * x + second[2] * y + third[2] * z,
     )
 
 
@@ -240,6 +258,7 @@ def epicyclic_roots(c: SegmentCoefficients, diameter_m: float) -> tuple[complex,
     return (first, second) if abs(first.imag) >= abs(second.imag) else (second, first)
 
 
+@formula
 def _phi(z: complex) -> tuple:
     """e^z, phi1, phi2, phi3 (phi_k(z) = sum z^n/(n+k)!), accurate for every z."""
     if abs(z) > 1.0:
@@ -255,6 +274,7 @@ def _phi(z: complex) -> tuple:
     return 1.0 + z * phi1, phi1, phi2, phi3
 
 
+@formula
 def _scalar_solution(rate: float, forcing: float, x0: float, s: float) -> tuple[float, float]:
     """x(s) and integral_0^s x of x' = rate x + forcing (closed form)."""
     e, phi1, phi2, _ = _phi(complex(rate * s))
@@ -262,6 +282,7 @@ def _scalar_solution(rate: float, forcing: float, x0: float, s: float) -> tuple[
     return e.real * x0 + f1 * forcing, f1 * x0 + f2 * forcing
 
 
+@formula
 def _epicyclic_solution(
     c: SegmentCoefficients,
     d: float,
@@ -279,34 +300,46 @@ def _epicyclic_solution(
     e2, p12, p22, _ = _phi((mean - delta) * s)
     # f0, f1, f2 at both roots; their means and divided differences.
     if abs(2.0 * delta * s) > _CONFLUENT:
-        f = ((e1 + e2) / 2, s * (p11 + p12) / 2, s * s * (p21 + p22) / 2)
-        df = (
+        f0, f1, f2 = (e1 + e2) / 2, s * (p11 + p12) / 2, s * s * (p21 + p22) / 2
+        df0, df1, df2 = (
             (e1 - e2) / (2 * delta),
             s * (p11 - p12) / (2 * delta),
             s * s * (p21 - p22) / (2 * delta),
         )
     else:
         e, phi1, phi2, phi3 = _phi(mean * s)
-        f = (e, s * phi1, s * s * phi2)
-        df = (s * e, s * s * (phi1 - phi2), s**3 * (phi2 - 2.0 * phi3))
+        f0, f1, f2 = e, s * phi1, s * s * phi2
+        df0, df1, df2 = s * e, s * s * (phi1 - phi2), s**3 * (phi2 - 2.0 * phi3)
+    # X(s) = f0(M) X0 + f1(M) F and its integral f1(M) X0 + f2(M) F, each f(M) [v, q] being
+    # f [v, q] + df (M - m I) [v, q]
+    v = (f0 * v0 + df0 * ((a11 - mean) * v0 + a12 * q0)) + (
+        f1 * force_v + df1 * ((a11 - mean) * force_v + a12 * force_q)
+    )
+    q = (f0 * q0 + df0 * (a21 * v0 + (a22 - mean) * q0)) + (
+        f1 * force_q + df1 * (a21 * force_v + (a22 - mean) * force_q)
+    )
+    v_integral = (f1 * v0 + df1 * ((a11 - mean) * v0 + a12 * q0)) + (
+        f2 * force_v + df2 * ((a11 - mean) * force_v + a12 * force_q)
+    )
+    q_integral = (f1 * q0 + df1 * (a21 * v0 + (a22 - mean) * q0)) + (
+        f2 * force_q + df2 * (a21 * force_v + (a22 - mean) * force_q)
+    )
+    return v, q, v_integral, q_integral
 
-    def apply(k, v, q):  # f_k(M) [v, q]
-        return (
-            f[k] * v + df[k] * ((a11 - mean) * v + a12 * q),
-            f[k] * q + df[k] * (a21 * v + (a22 - mean) * q),
-        )
 
-    (v_a, q_a), (v_b, q_b) = apply(0, v0, q0), apply(1, force_v, force_q)
-    (iv_a, iq_a), (iv_b, iq_b) = apply(1, v0, q0), apply(2, force_v, force_q)
-    return v_a + v_b, q_a + q_b, iv_a + iv_b, iq_a + iq_b
-
-
+@formula
 def propagate_segment(
-    model: RigidBodyModel, state, c: SegmentCoefficients, rows: tuple, secant: float, s: float
+    model: RigidBodyModel | RigidBodyKernel,
+    state,
+    c: SegmentCoefficients,
+    rows: tuple,
+    secant: float,
+    s: float,
 ) -> tuple:
     """The 12 states at arc length ``s`` (calibres) into a segment starting at ``state``, with
     coefficients ``c``, the flat-to-N rotation ``rows`` used for gravity, wind and position
-    (eq L7) and sec(theta) ``secant`` (eq L6). Closed form throughout (eqs L2-L7)."""
+    (eq L7) and sec(theta) ``secant`` (eq L6). Closed form throughout (eqs L2-L7); ``model``
+    gives the diameter and the wind (a RigidBodyKernel in compiled code)."""
     x, y, z, phi, theta, psi, u, v, w, p, q, r = state
     d, speed = model.d, c.speed
     g_u, g_v, g_w = _apply(rows, c.gravity)
@@ -357,7 +390,9 @@ class _Segment(NamedTuple):
         return self.length * model.d / self.coefficients.speed
 
 
-def _solve_segment(model, state, length, coefficients_at, aerodynamics, uniform) -> _Segment:
+def _solve_segment(
+    model, state, time_s, length, coefficients_at, aerodynamics, uniform
+) -> _Segment:
     """Eq L8: a first pass at the start's attitude and coefficients, then the second pass with
     the trapezoid rotation and the coefficients at ``coefficients_at``."""
 
@@ -375,9 +410,55 @@ def _solve_segment(model, state, length, coefficients_at, aerodynamics, uniform)
     else:
         chosen = start
     rows1 = _rotation(end[4], end[5])
-    rows = tuple(tuple((a + b) / 2 for a, b in zip(r0, r1)) for r0, r1 in zip(rows0, rows1))
+    rows = tuple(
+        ((a0 + b0) / 2, (a1 + b1) / 2, (a2 + b2) / 2)
+        for (a0, a1, a2), (b0, b1, b2) in zip(rows0, rows1)
+    )
     secant = (secant0 + 1.0 / math.cos(end[4])) / 2
-    return _Segment(state, chosen, start, rows, secant, 0.0, length)
+    return _Segment(state, chosen, start, rows, secant, time_s, length)
+
+
+def _states_at(model: RigidBodyModel, segments: list[_Segment], times: np.ndarray) -> np.ndarray:
+    """The 12 states (12, n) at ``times`` (s), each from the segment it falls in."""
+    starts = np.array([segment.time_s for segment in segments])
+    index = np.clip(np.searchsorted(starts, times, side="right") - 1, 0, len(segments) - 1)
+    coefficients = np.array(
+        [(*segment.coefficients[:8], *segment.coefficients.gravity) for segment in segments]
+    )
+    lengths = (times - starts[index]) * coefficients[index, 0] / model.d
+    return _propagate_rows(
+        model.kernel,
+        np.array([segment.start for segment in segments]),
+        coefficients,
+        np.array([segment.rows for segment in segments]),
+        np.array([segment.secant for segment in segments]),
+        index,
+        lengths,
+    )
+
+
+@jit
+def _propagate_rows(kernel, starts, coefficients, rows, secants, index, lengths):
+    """:func:`propagate_segment` of segment ``index[k]`` to ``lengths[k]`` calibres, for each
+    k: the segments as arrays (their SegmentCoefficients without the dynamic pressure)."""
+    model = RigidBodyKernel(*kernel)
+    states = np.empty((12, lengths.size))
+    for k in range(lengths.size):
+        i = index[k]
+        c = coefficients[i]
+        state = propagate_segment(
+            model,
+            starts[i],
+            SegmentCoefficients(
+                c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], (c[8], c[9], c[10]), 0.0
+            ),
+            rows[i],
+            secants[i],
+            lengths[k],
+        )
+        for j in range(12):
+            states[j, k] = state[j]
+    return states
 
 
 def _altitude(state) -> float:
@@ -391,6 +472,12 @@ def _radial_velocity(segment: _Segment, state) -> float:
     return state[0] * vx + state[1] * vy + (state[2] - _R) * vz
 
 
+def _where(segment: _Segment) -> str:
+    """Where ``segment`` starts, for a validity problem."""
+    pressure = segment.start_coefficients.dynamic_pressure
+    return f"at {_altitude(segment.start) / 1e3:.1f} km ({pressure / 1e3:.1f} kPa dynamic pressure)"
+
+
 def _validity_problem(segment: _Segment, model) -> str | None:
     """Why ``segment`` is outside linear theory's validity in the air, or None: a growing
     epicyclic mode or an angle of attack beyond :data:`MAX_SMALL_ANGLE_DEG`, at its start,
@@ -398,20 +485,19 @@ def _validity_problem(segment: _Segment, model) -> str | None:
     state, pressure = segment.start, segment.start_coefficients.dynamic_pressure
     if pressure <= DENSE_AIR_PA:  # also every flight without aerodynamics
         return None
-    u_w, v_w, w_w = _apply(_rotation(state[4], state[5]), model.wind)
-    air_velocity = (state[6] - u_w, state[7] - v_w, state[8] - w_w)
-    where = f"at {_altitude(state) / 1e3:.1f} km ({pressure / 1e3:.1f} kPa dynamic pressure)"
-    growth = max(root.real for root in epicyclic_roots(segment.start_coefficients, model.d))
+    fast, slow = epicyclic_roots(segment.start_coefficients, model.d)
+    growth = max(fast.real, slow.real)
     if growth * segment.length > 1.0:
         return (
-            f"an epicyclic mode grows e-fold every {model.d / growth:.3g} m {where}: the "
+            f"an epicyclic mode grows e-fold every {model.d / growth:.3g} m {_where(segment)}: the "
             "projectile is dynamically unstable there and its angle of attack cannot stay "
             "small"
         )
-    alpha = math.degrees(math.atan2(math.hypot(*air_velocity[1:]), air_velocity[0]))
+    u_w, v_w, w_w = _apply(_rotation(state[4], state[5]), model.wind)
+    alpha = math.degrees(math.atan2(math.hypot(state[7] - v_w, state[8] - w_w), state[6] - u_w))
     if alpha > MAX_SMALL_ANGLE_DEG:
         return (
-            f"the angle of attack reaches {alpha:.1f} deg {where}; linear theory assumes "
+            f"the angle of attack reaches {alpha:.1f} deg {_where(segment)}; linear theory assumes "
             "small angles where the air acts"
         )
     return None
@@ -476,9 +562,7 @@ def simulate_mlt(
     time, impact, problem = 0.0, False, None
     apogee: tuple | None = None
     while time < max_time:
-        segment = _solve_segment(
-            model, state, length, coefficients_at, aerodynamics, uniform
-        )._replace(time_s=time)
+        segment = _solve_segment(model, state, time, length, coefficients_at, aerodynamics, uniform)
         problem = problem or _validity_problem(segment, model)
         duration = segment.duration_s(model)
         end = segment.at(model, length)
@@ -524,17 +608,7 @@ def simulate_mlt(
 
     end_time = segments[-1].time_s + segments[-1].duration_s(model)
     times = np.append(np.arange(0.0, end_time, step), end_time)
-    starts = np.array([segment.time_s for segment in segments])
-    index = np.clip(np.searchsorted(starts, times, side="right") - 1, 0, len(segments) - 1)
-    states = np.array(
-        [
-            segments[i].at(
-                model, (t - segments[i].time_s) * segments[i].coefficients.speed / model.d
-            )
-            for i, t in zip(index, times)
-        ]
-    ).T
-    frame = trajectory_table(model, times, states)
+    frame = trajectory_table(model, times, _states_at(model, segments, times))
     if np.any(frame.altitude_m.to_numpy()[:-1] < -1.0):
         raise RuntimeError(
             f"the MLT flight of {projectile.name} passes below the ground inside "
@@ -543,12 +617,7 @@ def simulate_mlt(
         )
     apogee_values = None
     if apogee is not None:
-        top = trajectory_table(model, np.array([apogee[0]]), np.array(apogee[1])[:, None])
-        apogee_values = (
-            apogee[0],
-            float(top.altitude_m.iloc[0]),
-            float(top.ground_range_m.iloc[0]),
-        )
+        apogee_values = (apogee[0], *altitude_and_range(apogee[1]))
     # each segment evaluates its coefficients at its start (eq L8's first pass), and again at
     # its middle or its end unless they stay frozen at the start
     per_segment = 1 if coefficients_at == "start" else 2
@@ -568,6 +637,14 @@ def simulate_mlt(
         aerodynamics=aerodynamics,
     )
     return frame
+
+
+def warm_up() -> None:
+    """Compile MLT's kernels (its table's rows, the 6DOF's) now, or load them from the on-disk
+    cache, not at first use."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TruncatedFlightWarning)  # a short flight compiles all
+        simulate_mlt(HP_CHAPTER_2, max_time_s=1.0)
 
 
 def linear_theory_derivatives(

@@ -71,10 +71,13 @@ about x). Velocity and body angular velocity are resolved in N: ``[u v w]`` and 
 Nothing in N oscillates at the spin rate: what remains is the pitch/yaw oscillation (9 Hz
 for HP, 17 Hz for LP at launch, slowing as the air thins) and, above the atmosphere, the
 gyroscopic nutation at Ix p / Iy (below 1 rad/s), so DOP853 at rtol 1e-9 takes about 1500
-steps (25000 evaluations, under a second) for a whole flight. ``tests/test_sixdof.py`` checks
-that the two derivatives agree at random states (transformed between the frames) and that
-the adaptive no-roll solution agrees with Appendix B's own fixed-step RK4 on the body-frame
-port.
+steps (25000 evaluations) for a whole flight. ``tests/test_sixdof.py`` checks that the two
+derivatives agree at random states (transformed between the frames) and that the adaptive
+no-roll solution agrees with Appendix B's own fixed-step RK4 on the body-frame port.
+
+The no-roll derivatives (and the table's aerodynamics) are compiled (:mod:`.compiled`;
+:func:`warm_up`): about 1 us an evaluation, so a flight takes about 0.13 s, four fifths of it
+scipy's own stepping, events and dense output. Appendix B's port stays numpy (it verifies).
 
 The Euler angles are Appendix B's and share its singularity at theta = +-90 deg.
 """
@@ -82,18 +85,27 @@ The Euler angles are Appendix B's and share its singularity at theta = +-90 deg.
 from __future__ import annotations
 
 import math
+import warnings
 from bisect import bisect_right
 from functools import lru_cache
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
 from scipy.integrate import solve_ivp
 
 from . import earth
-from .atmosphere import AtmosphereModel, get_atmosphere
-from .launch import Launch
+from .atmosphere import AtmosphereModel, air, get_atmosphere
+from .compiled import formula, jit
+from .launch import HP_CHAPTER_2, Launch
 from .projectiles import Projectile, check_rigid_body
-from .trajectory import BASE_COLUMNS, describe, flight_path_angle, surface_ranges
+from .trajectory import (
+    BASE_COLUMNS,
+    TruncatedFlightWarning,
+    describe,
+    flight_path_angle,
+    surface_ranges,
+)
 from .validation import check_choice, check_range, finite_array, finite_scalar, positive_scalar
 
 __all__ = [
@@ -101,15 +113,18 @@ __all__ = [
     "DENSITY_ALTITUDES",
     "EXTRA_COLUMNS",
     "RigidBodyModel",
+    "RigidBodyKernel",
     "rigid_body_model",
     "rigid_body_launch",
     "launch_state",
+    "altitude_and_range",
     "flight_table",
     "appendix_b_derivatives",
     "no_roll_derivatives",
     "trajectory_table",
     "simulate_6dof",
     "integrate_fixed_step",
+    "warm_up",
 ]
 
 STATE_NAMES = ("x", "y", "z", "phi", "theta", "psi", "u", "v", "w", "p", "q", "r")
@@ -133,8 +148,126 @@ _ATOL = np.array([1e-6] * 3 + [1e-10] * 3 + [1e-7] * 3 + [1e-8, 1e-10, 1e-10])
 _SINGULAR_COS = 1e-6
 
 
+class RigidBodyKernel(NamedTuple):
+    """A :class:`RigidBodyModel` as compiled code takes it: the constants under the model's
+    attribute names (so one formula reads either), the M829 table as arrays and the atmosphere
+    by its number and table (:func:`harp_analysis.atmosphere.air`)."""
+
+    mass: float
+    ix: float
+    iy: float
+    d: float
+    wind: tuple
+    spherical: bool
+    atmosphere: int
+    atmosphere_table: np.ndarray
+    mach_table: np.ndarray
+    rows: np.ndarray
+    slopes: np.ndarray
+
+
+# The physics below is written once, for a model that is a RigidBodyModel in Python (MLT's
+# segments, Appendix B's port) or a RigidBodyKernel in compiled code (the no-roll right-hand
+# side that DOP853 calls, the table's aerodynamics).
+@formula
+def _air_altitude(model, x, y, z):
+    """Altitude (m) where the air is read: the flat (-z) or the spherical (|r| - R)."""
+    return math.sqrt(x * x + y * y + (_R - z) ** 2) - _R if model.spherical else -z
+
+
+@formula
+def _coefficients(model, mach):
+    """CX0 CX2 CNA CYPA CMQ CLP CLDD SLDEL SLMAG at ``mach``: one bracket search for all
+    nine, linear between table points, end values held outside the table."""
+    table = model.mach_table
+    i = min(max(bisect_right(table, mach), 1), len(table) - 1) - 1
+    weight = min(max((mach - table[i]) / (table[i + 1] - table[i]), 0.0), 1.0)
+    row, slope = model.rows[i], model.slopes[i]
+    return (
+        row[0] + weight * slope[0],
+        row[1] + weight * slope[1],
+        row[2] + weight * slope[2],
+        row[3] + weight * slope[3],
+        row[4] + weight * slope[4],
+        row[5] + weight * slope[5],
+        row[6] + weight * slope[6],
+        row[7] + weight * slope[7],
+        row[8] + weight * slope[8],
+    )
+
+
+@jit
+def _aerodynamics(model, x, y, z, c_theta, s_theta, c_psi, s_psi, u, v, w, p, q, r):
+    """Aerodynamic force and moment in the no-roll frame, air-relative velocity (same
+    frame), Mach and the total axial coefficient -CX0 - CX2 (v^2 + w^2)/V^2."""
+    wx, wy, wz = model.wind
+    ua = u - (c_theta * c_psi * wx + c_theta * s_psi * wy - s_theta * wz)
+    va = v - (-s_psi * wx + c_psi * wy)
+    wa = w - (s_theta * c_psi * wx + s_theta * s_psi * wy + c_theta * wz)
+    lateral = va * va + wa * wa
+    big_v = math.sqrt(ua * ua + lateral)
+    rho, sound = air(model.atmosphere, _air_altitude(model, x, y, z), model.atmosphere_table)
+    mach = big_v / sound
+    cx0, cx2, cna, cypa, cmq, clp, cldd, dx, dxmag = _coefficients(model, mach)
+    d = model.d
+    qa = 0.125 * math.pi * rho * big_v * big_v * d * d
+    magnus = 0.0625 * rho * math.pi * d**3 * p * cypa
+    axial = cx0 + cx2 * lateral / (big_v * big_v)
+    normal = qa * cna / big_v
+    damping = qa * d * d * cmq / (2.0 * big_v)
+    force = (qa * axial, -normal * va + magnus * wa, -normal * wa - magnus * va)
+    moment = (
+        qa * d * (cldd + p * clp * d / (2.0 * big_v)),
+        normal * dx * wa + damping * q + magnus * dxmag * va,
+        -normal * dx * va + damping * r + magnus * dxmag * wa,
+    )
+    return force, moment, (ua, va, wa), mach, -axial
+
+
+@jit
+def _no_roll(t, state, kernel):
+    """The no-roll right-hand side (module docstring, steps 1-5) of the model whose
+    :attr:`RigidBodyModel.kernel` is ``kernel``."""
+    model = RigidBodyKernel(*kernel)
+    x, y, z, _, theta, psi, u, v, w, p, q, r = state
+    c_theta, s_theta = math.cos(theta), math.sin(theta)
+    t_theta = s_theta / c_theta
+    c_psi, s_psi = math.cos(psi), math.sin(psi)
+    force, moment, _, _, _ = _aerodynamics(
+        model, x, y, z, c_theta, s_theta, c_psi, s_psi, u, v, w, p, q, r
+    )
+    fx, fy, fz = force
+    mx, my, mz = moment
+    # Weight per unit mass, Appendix B's magnitude (no y^2), resolved in N.
+    radius = math.sqrt(x * x + y * y + (_R - z) ** 2)
+    g = _GM / (((_R - z) ** 2 + x * x) * radius)
+    gx, gy, gz = -g * x, -g * y, g * (_R - z)
+    g_u = c_theta * c_psi * gx + c_theta * s_psi * gy - s_theta * gz
+    g_v = -s_psi * gx + c_psi * gy
+    g_w = s_theta * c_psi * gx + s_theta * s_psi * gy + c_theta * gz
+    frame_roll = -r * t_theta  # x component of the frame rate Omega
+    m, ix, iy = model.mass, model.ix, model.iy
+    return np.array(
+        (
+            c_theta * c_psi * u - s_psi * v + s_theta * c_psi * w,
+            c_theta * s_psi * u + c_psi * v + s_theta * s_psi * w,
+            -s_theta * u + c_theta * w,
+            p - frame_roll,
+            q,
+            r / c_theta,
+            fx / m + g_u - (q * w - r * v),
+            fy / m + g_v - (r * u - frame_roll * w),
+            fz / m + g_w - (frame_roll * v - q * u),
+            mx / ix,
+            (my - ix * p * r + iy * frame_roll * r) / iy,
+            (mz + ix * p * q - iy * frame_roll * q) / iy,
+        )
+    )
+
+
 class RigidBodyModel:
-    """Constants of one projectile in one atmosphere and wind; the two derivative functions."""
+    """Constants of one projectile in one atmosphere and wind; the two derivative functions
+    (Appendix B's port in numpy, the no-roll one compiled)."""
 
     def __init__(
         self,
@@ -151,6 +284,11 @@ class RigidBodyModel:
             projectile.diameter_m,
         )
         assert aero is not None and ix is not None and iy is not None and d is not None
+        if atmosphere.code < 0:
+            raise ValueError(
+                f"atmosphere {atmosphere.name!r} has no compiled form; the rigid-body engines "
+                "fly the models of harp_analysis.atmosphere.ATMOSPHERE_NAMES"
+            )
         self.mass: float = projectile.mass_kg
         self.ix: float = ix
         self.iy: float = iy  # Iz = Iy (Appendix B)
@@ -159,22 +297,35 @@ class RigidBodyModel:
         self.sound = atmosphere.sound_kernel
         self.spherical = density_altitude == "spherical"
         self.wind = wind_m_s
-        self.mach_table = list(aero.mach)
         table = aero.table()
+        # Python numbers for the Python callers: much faster than numpy's in scalar code.
+        self.mach_table = list(map(float, aero.mach))
         self.rows = [tuple(map(float, row)) for row in table]
         self.slopes = [tuple(map(float, row)) for row in np.diff(table, axis=0)]
+        #: The model as the compiled functions take it: the fields of RigidBodyKernel, as a
+        #: plain tuple (which numba reads from Python faster than a NamedTuple).
+        self.kernel = tuple(
+            RigidBodyKernel(
+                self.mass,
+                ix,
+                iy,
+                d,
+                self.wind,
+                self.spherical,
+                atmosphere.code,
+                atmosphere.table(),
+                np.array(self.mach_table),
+                np.array(self.rows),
+                np.array(self.slopes),
+            )
+        )
 
-    def coefficients(self, mach: float) -> tuple:
-        """CX0 CX2 CNA CYPA CMQ CLP CLDD SLDEL SLMAG at ``mach``: one bracket search for all
-        nine, linear between table points, end values held outside the table."""
-        table = self.mach_table
-        i = min(max(bisect_right(table, mach), 1), len(table) - 1) - 1
-        weight = min(max((mach - table[i]) / (table[i + 1] - table[i]), 0.0), 1.0)
-        return tuple(c + weight * s for c, s in zip(self.rows[i], self.slopes[i]))
+    air_altitude = _air_altitude
+    coefficients = _coefficients
 
     def air(self, x: float, y: float, z: float) -> tuple[float, float]:
         """Density and speed of sound at the flat (-z) or spherical (|r| - R) altitude."""
-        altitude = math.sqrt(x * x + y * y + (_R - z) ** 2) - _R if self.spherical else -z
+        altitude = self.air_altitude(x, y, z)
         return float(self.density(altitude)), float(self.sound(altitude))
 
     def body(self, state) -> np.ndarray:
@@ -247,65 +398,16 @@ class RigidBodyModel:
             ]
         )
 
-    def aero_no_roll(self, x, y, z, c_theta, s_theta, c_psi, s_psi, u, v, w, p, q, r):
-        """Aerodynamic force and moment in the no-roll frame, air-relative velocity (same
-        frame), Mach and the total axial coefficient -CX0 - CX2 (v^2 + w^2)/V^2."""
-        wx, wy, wz = self.wind
-        ua = u - (c_theta * c_psi * wx + c_theta * s_psi * wy - s_theta * wz)
-        va = v - (-s_psi * wx + c_psi * wy)
-        wa = w - (s_theta * c_psi * wx + s_theta * s_psi * wy + c_theta * wz)
-        lateral = va * va + wa * wa
-        big_v = math.sqrt(ua * ua + lateral)
-        rho, sound = self.air(x, y, z)
-        mach = big_v / sound
-        cx0, cx2, cna, cypa, cmq, clp, cldd, dx, dxmag = self.coefficients(mach)
-        d = self.d
-        qa = 0.125 * math.pi * rho * big_v * big_v * d * d
-        magnus = 0.0625 * rho * math.pi * d**3 * p * cypa
-        axial = cx0 + cx2 * lateral / (big_v * big_v)
-        normal = qa * cna / big_v
-        damping = qa * d * d * cmq / (2.0 * big_v)
-        force = (qa * axial, -normal * va + magnus * wa, -normal * wa - magnus * va)
-        moment = (
-            qa * d * (cldd + p * clp * d / (2.0 * big_v)),
-            normal * dx * wa + damping * q + magnus * dxmag * va,
-            -normal * dx * va + damping * r + magnus * dxmag * wa,
-        )
-        return force, moment, (ua, va, wa), mach, -axial
+    def no_roll(self, t, state) -> np.ndarray:
+        """The same equations in the no-roll frame (module docstring, steps 1-5), compiled."""
+        return _no_roll(t, state, self.kernel)
 
-    def no_roll(self, t, state) -> list:
-        """The same equations in the no-roll frame (module docstring, steps 1-5)."""
-        # Python floats: much faster than numpy scalars in this scalar arithmetic.
-        x, y, z, _, theta, psi, u, v, w, p, q, r = state.tolist()
-        c_theta, s_theta = math.cos(theta), math.sin(theta)
-        t_theta = s_theta / c_theta
-        c_psi, s_psi = math.cos(psi), math.sin(psi)
-        (fx, fy, fz), (mx, my, mz), *_ = self.aero_no_roll(
-            x, y, z, c_theta, s_theta, c_psi, s_psi, u, v, w, p, q, r
-        )
-        # Weight per unit mass, Appendix B's magnitude (no y^2), resolved in N.
-        radius = math.sqrt(x * x + y * y + (_R - z) ** 2)
-        g = _GM / (((_R - z) ** 2 + x * x) * radius)
-        gx, gy, gz = -g * x, -g * y, g * (_R - z)
-        g_u = c_theta * c_psi * gx + c_theta * s_psi * gy - s_theta * gz
-        g_v = -s_psi * gx + c_psi * gy
-        g_w = s_theta * c_psi * gx + s_theta * s_psi * gy + c_theta * gz
-        frame_roll = -r * t_theta  # x component of the frame rate Omega
-        m, ix, iy = self.mass, self.ix, self.iy
-        return [
-            c_theta * c_psi * u - s_psi * v + s_theta * c_psi * w,
-            c_theta * s_psi * u + c_psi * v + s_theta * s_psi * w,
-            -s_theta * u + c_theta * w,
-            p - frame_roll,
-            q,
-            r / c_theta,
-            fx / m + g_u - (q * w - r * v),
-            fy / m + g_v - (r * u - frame_roll * w),
-            fz / m + g_w - (frame_roll * v - q * u),
-            mx / ix,
-            (my - ix * p * r + iy * frame_roll * r) / iy,
-            (mz + ix * p * q - iy * frame_roll * q) / iy,
-        ]
+
+def warm_up() -> None:
+    """Compile the 6DOF's kernels now (or load them from the on-disk cache), not at first use."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TruncatedFlightWarning)  # a short flight compiles all
+        simulate_6dof(HP_CHAPTER_2, max_time_s=0.1, output_step_s=0.1)
 
 
 def _atmosphere_model(atmosphere) -> AtmosphereModel:
@@ -419,31 +521,32 @@ def integrate_fixed_step(
     return np.arange(n + 1) * h, states
 
 
-def _flat_velocity(states: np.ndarray) -> np.ndarray:
-    """Flat-frame velocity (n, 3) of no-roll states (12, n)."""
-    theta, psi, u, v, w = states[4], states[5], states[6], states[7], states[8]
+@formula
+def _flat_velocity(theta, psi, u, v, w):
+    """Flat-frame velocity components of no-roll states (numbers or arrays)."""
     ct, st, cp, sp = np.cos(theta), np.sin(theta), np.cos(psi), np.sin(psi)
-    return np.column_stack(
-        [ct * cp * u - sp * v + st * cp * w, ct * sp * u + cp * v + st * sp * w, -st * u + ct * w]
-    )
+    return ct * cp * u - sp * v + st * cp * w, ct * sp * u + cp * v + st * sp * w, -st * u + ct * w
 
 
-def _earth_centred(states: np.ndarray) -> np.ndarray:
-    """Position (n, 3) from the Earth's centre, flat-frame axes."""
-    return np.column_stack([states[0], states[1], states[2] - _R])
+@jit
+def _radial_velocity(state):
+    """r . dr/dt of a no-roll state up to the factor 1/|r|: the apogee event."""
+    x, y, z, _, theta, psi, u, v, w, _, _, _ = state
+    vx, vy, vz = _flat_velocity(theta, psi, u, v, w)
+    return x * vx + y * vy + (z - _R) * vz
 
 
-def trajectory_table(model: RigidBodyModel, times: np.ndarray, states: np.ndarray) -> pd.DataFrame:
-    """The tidy trajectory table of :mod:`.trajectory` plus :data:`EXTRA_COLUMNS` for no-roll
-    states (12, n); Mach, drag and angle of attack evaluated with ``model``'s aerodynamics."""
-    position = _earth_centred(states)
-    velocity = _flat_velocity(states)
-    radius = np.linalg.norm(position, axis=1)
-    ground, cross = surface_ranges(position, (0.0, 0.0, -1.0), (1.0, 0.0, 0.0))
-    mach, axial, drag, alpha = (np.empty(times.size) for _ in range(4))
-    for k, s in enumerate(states.T):
-        x, y, z, _, theta, psi, u, v, w, p, q, r = s
-        force, _, air, mach[k], axial[k] = model.aero_no_roll(
+@jit
+def _row_aerodynamics(states, kernel):
+    """Mach, axial coefficient, aerodynamic force opposing the air-relative velocity (N) and
+    angle of attack of no-roll states (12, n)."""
+    model = RigidBodyKernel(*kernel)
+    n = states.shape[1]
+    mach, axial, drag, alpha = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    for k in range(n):
+        x, y, z, _, theta, psi, u, v, w, p, q, r = states[:, k]
+        force, _, air_velocity, mach[k], axial[k] = _aerodynamics(
+            model,
             x,
             y,
             z,
@@ -458,9 +561,27 @@ def trajectory_table(model: RigidBodyModel, times: np.ndarray, states: np.ndarra
             q,
             r,
         )
-        air_speed = math.sqrt(air[0] ** 2 + air[1] ** 2 + air[2] ** 2)
-        drag[k] = -(force[0] * air[0] + force[1] * air[1] + force[2] * air[2]) / air_speed
-        alpha[k] = math.atan2(math.hypot(air[1], air[2]), air[0])
+        ua, va, wa = air_velocity
+        drag[k] = -(force[0] * ua + force[1] * va + force[2] * wa) / math.sqrt(
+            ua * ua + va * va + wa * wa
+        )
+        alpha[k] = math.atan2(math.hypot(va, wa), ua)
+    return mach, axial, drag, alpha
+
+
+def _earth_centred(states: np.ndarray) -> np.ndarray:
+    """Position (n, 3) from the Earth's centre, flat-frame axes."""
+    return np.column_stack([states[0], states[1], states[2] - _R])
+
+
+def trajectory_table(model: RigidBodyModel, times: np.ndarray, states: np.ndarray) -> pd.DataFrame:
+    """The tidy trajectory table of :mod:`.trajectory` plus :data:`EXTRA_COLUMNS` for no-roll
+    states (12, n); Mach, drag and angle of attack evaluated with ``model``'s aerodynamics."""
+    position = _earth_centred(states)
+    velocity = np.column_stack(_flat_velocity(*states[4:9]))
+    radius = np.linalg.norm(position, axis=1)
+    ground, cross = surface_ranges(position, (0.0, 0.0, -1.0), (1.0, 0.0, 0.0))
+    mach, axial, drag, alpha = _row_aerodynamics(np.ascontiguousarray(states), model.kernel)
     columns = dict(
         time_s=times,
         x_m=states[0],
@@ -483,6 +604,14 @@ def trajectory_table(model: RigidBodyModel, times: np.ndarray, states: np.ndarra
         yaw_rad=states[5],
     )
     return pd.DataFrame({name: columns[name] for name in BASE_COLUMNS + EXTRA_COLUMNS})
+
+
+def altitude_and_range(state) -> tuple[float, float]:
+    """Altitude |r| - R and ground range (m) of one no-roll state, as in
+    :func:`trajectory_table`."""
+    position = _earth_centred(np.asarray(state, dtype=float)[:, None])
+    ground, _ = surface_ranges(position, (0.0, 0.0, -1.0), (1.0, 0.0, 0.0))
+    return float(np.linalg.norm(position, axis=1)[0] - _R), float(ground[0])
 
 
 def rigid_body_launch(launch: Launch, engine: str, density_altitude: str) -> RigidBodyModel:
@@ -546,12 +675,7 @@ def flight_table(
     frame = trajectory_table(model, times, solution.sol(times))
     highest = None
     if solution.t_events[1].size:
-        top = trajectory_table(model, solution.t_events[1][:1], solution.y_events[1][:1].T)
-        highest = (
-            float(solution.t_events[1][0]),
-            float(top.altitude_m.iloc[0]),
-            float(top.ground_range_m.iloc[0]),
-        )
+        highest = (float(solution.t_events[1][0]), *altitude_and_range(solution.y_events[1][0]))
     return describe(
         frame,
         engine=engine,
@@ -601,9 +725,8 @@ def simulate_6dof(
     def impact(t, y):
         return math.sqrt(y[0] ** 2 + y[1] ** 2 + (_R - y[2]) ** 2) - _R
 
-    def apogee(t, y):  # radial velocity, up to the factor 1/|r|
-        ((vx, vy, vz),) = _flat_velocity(y[:, None])
-        return y[0] * vx + y[1] * vy + (y[2] - _R) * vz
+    def apogee(t, y):
+        return _radial_velocity(y)
 
     def singular_pitch(t, y):
         return math.cos(y[4]) - _SINGULAR_COS

@@ -9,74 +9,293 @@ Not Appendix A's integrator: its fixed-step, second-order position recurrence is
 the adaptive 8th-order scheme of :mod:`.integrator` with events for apogee and impact, so
 results converge (to millimetres at the default ``rtol=1e-9``; see the benchmark). The state
 is integrated in the Earth-centred inertial frame (x toward longitude 0 on the equator at
-launch, z north); with
-rotation off this frame is also Earth-fixed. Winds are fixed to the Earth, given as a head wind
-(blowing against the line of fire) and a cross wind (blowing toward the right of it) at launch.
+launch, z north); with rotation off this frame is also Earth-fixed. Winds are fixed to the
+Earth, given as a head wind (blowing against the line of fire) and a cross wind (blowing toward
+the right of it) at launch.
+
+The right-hand side and the stepping loop are compiled (:mod:`.compiled`; :func:`warm_up`
+compiles them ahead of use, once per version of the package); a batch flies its launches one
+after the other at the speed of one (``make benchmark``).
 """
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Iterable
-from dataclasses import dataclass
+from functools import cache
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
 
 from . import earth
-from .atmosphere import AtmosphereModel, get_atmosphere
-from .integrator import Breakpoint, Event, integrate_batch
+from .atmosphere import air, get_atmosphere
+from .compiled import jit, vector
+from .drag import drag_coefficient
+from .integrator import (
+    ALTITUDE,
+    MIN_CUT_S,
+    RADIAL_VELOCITY,
+    STAGES,
+    STRADDLE,
+    TABLEAU,
+    crossing_fraction,
+    error_norm,
+    event_value,
+    first_step,
+    hermite,
+    stage_state,
+    step_factor,
+    trial_step,
+)
 from .launch import Launch
 from .trajectory import (
     BASE_COLUMNS,
     TruncatedFlightWarning,
+    cross_product,
     describe,
     flight_path_angle,
     launch_frame,
     rotate_about_axis,
     surface_ranges,
+    turned_about_axis,
 )
 from .validation import check_range, finite_scalar, positive_scalar
 
-__all__ = ["simulate_3dof", "simulate_3dof_batch"]
+__all__ = ["simulate_3dof", "simulate_3dof_batch", "fly_3dof", "Flights", "warm_up"]
+
+# --- the physics: one launch's right-hand side, compiled ---------------------------------------
+# What the launches of one batch share: the numbers of the atmosphere and the drag law
+# (``air_code``, ``drag_code``: compile-time constants, so each pair gets its own machine code
+# without the other models' branches, half the time of a right-hand side) and ``dynamics``, the
+# atmosphere's table, the drag law's parameters and table, A / (2 m) and the Earth's rotation
+# rate. ``wind`` (3,) is the launch's Earth-fixed wind at t = 0, in inertial components.
+_OMEGA = 5
 
 
-@dataclass(frozen=True)
-class _Dynamics:
-    """Gravity and drag of a batch of launches that share a projectile, air and Earth."""
+@jit(inline=True)
+def _air_velocity(t, y, wind, omega):
+    """Velocity relative to the air, which turns with the Earth and carries the wind."""
+    if not omega:
+        return vector(y[3] - wind[0], y[4] - wind[1], y[5] - wind[2])
+    wind_x, wind_y = turned_about_axis(wind[0], wind[1], omega * t)
+    return vector(y[3] - omega * -y[1] - wind_x, y[4] - omega * y[0] - wind_y, y[5] - wind[2])
 
-    atmosphere: AtmosphereModel
-    drag_law: object
-    drag_factor_m2_kg: float  # Cd-free part of the drag: A / (2 m)
-    mass_kg: float
-    rotation_rate_rad_s: float
-    wind_m_s: np.ndarray  # (3, n) Earth-fixed wind at t = 0, inertial components
 
-    def air_velocity(self, t, y, index):
-        omega = self.rotation_rate_rad_s
-        if not omega:
-            return y[3:] - self.wind_m_s[:, index]
-        wind = rotate_about_axis(self.wind_m_s[:, index], omega * t)
-        return y[3:] - omega * np.array([-y[1], y[0], np.zeros_like(y[0])]) - wind
+@jit(inline=True)
+def _forces(t, y, wind, air_code, drag_code, dynamics):
+    """Radius, altitude, air velocity (3 numbers) and its norm, Mach, Cd and density."""
+    radius = np.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
+    altitude = radius - earth.RADIUS_M
+    air_x, air_y, air_z = _air_velocity(t, y, wind, dynamics[_OMEGA])
+    air_speed = np.sqrt(air_x * air_x + air_y * air_y + air_z * air_z)
+    density, sound = air(air_code, altitude, dynamics[0])
+    mach = air_speed / sound
+    cd = drag_coefficient(drag_code, mach, dynamics[1], dynamics[2], dynamics[3])
+    return radius, altitude, air_x, air_y, air_z, air_speed, mach, cd, density
 
-    def forces(self, t, y, index):
-        """Radius, altitude, air velocity and its norm, Mach, Cd, density of states (6, m)."""
-        radius = np.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
-        altitude = radius - earth.RADIUS_M
-        air = self.air_velocity(t, y, index)
-        air_speed = np.sqrt(air[0] * air[0] + air[1] * air[1] + air[2] * air[2])
-        mach = air_speed / self.atmosphere.sound_kernel(altitude)
-        cd = self.drag_law.evaluate(mach)
-        density = self.atmosphere.density_kernel(altitude)
-        return radius, altitude, air, air_speed, mach, cd, density
 
-    def acceleration(self, t, y, index):
-        radius, _, air, air_speed, _, cd, density = self.forces(t, y, index)
-        drag = self.drag_factor_m2_kg * density * cd * air_speed
-        return -earth.GM_M3_S2 / radius**3 * y[:3] - drag * air
+@jit(inline=True)
+def _acceleration(t, y, wind, air_code, drag_code, dynamics):
+    """Inverse-square gravity and drag opposite the air velocity (m/s^2, 3 numbers)."""
+    radius, _, air_x, air_y, air_z, air_speed, _, cd, density = _forces(
+        t, y, wind, air_code, drag_code, dynamics
+    )
+    drag = dynamics[4] * density * cd * air_speed
+    gravity = -earth.GM_M3_S2 / radius**3
+    return vector(
+        gravity * y[0] - drag * air_x, gravity * y[1] - drag * air_y, gravity * y[2] - drag * air_z
+    )
+
+
+@jit(inline=True)
+def _derivative(t, y, wind, air_code, drag_code, dynamics, out, row):
+    """y' = [velocity, acceleration] into ``out[row]`` (indexed: a row view would cost
+    reference counting in the stage loop)."""
+    out[row, 0], out[row, 1], out[row, 2] = y[3], y[4], y[5]
+    out[row, 3], out[row, 4], out[row, 5] = _acceleration(t, y, wind, air_code, drag_code, dynamics)
+
+
+# --- the integration: DOP853 with events, one trajectory ---------------------------------------
+@jit
+def _grow(array, size):
+    grown = np.empty((array.shape[0], 2 * array.shape[1]))
+    grown[:, :size] = array[:, :size]
+    return grown
+
+
+@jit(inline=True)
+def _integrate(y0, wind, air_code, drag_code, dynamics, numerics, record):
+    """One flight from ``y0`` until it falls back to the site or reaches ``t_max_s``;
+    ``numerics`` is ``(site_m, breakpoints_m, t_max_s, rtol, floor, max_step_s)``: the site's
+    altitude, the atmosphere's breakpoints and the integrator's settings (:func:`_fly`).
+
+    Returns the times of the apogee and impact (NaN if not reached), the state (6,) at each (the
+    last state for an impact not reached), the right-hand-side evaluations and accepted steps,
+    and, if ``record``, every accepted step: times (k,) and states with accelerations (9, k).
+    """
+    site_m, breakpoints_m, t_max_s, rtol, floor, max_step_s = numerics
+    k = np.empty((STAGES + 1, 6))
+    y, y_new, work = y0.copy(), np.empty(6), np.empty(6)
+    start = np.empty((2, 6))  # y' at the start and a trial step later
+    _derivative(0.0, y, wind, air_code, drag_code, dynamics, start, 0)
+    scale = np.empty(6)
+    for i in range(6):
+        scale[i] = rtol * max(abs(y[i]), floor[i])
+    h0 = trial_step(y, start[0], scale)
+    for i in range(6):
+        work[i] = y[i] + h0 * start[0, i]
+    _derivative(h0, work, wind, air_code, drag_code, dynamics, start, 1)
+    h = first_step(h0, start[0], start[1], scale, max_step_s)
+    evaluations = 2
+    a, a_new = start[0, 3:].copy(), np.empty(3)
+    times = np.empty(64 if record else 1)
+    steps = np.empty((9, 64 if record else 1))
+    if record:
+        times[0] = 0.0
+        steps[:6, 0], steps[6:, 0] = y, a
+    t, count = 0.0, 0
+    apogee_t, impact_t = math.nan, math.nan
+    apogee, end = np.empty(6), np.empty(6)
+    c = TABLEAU[2]
+    while True:
+        hi = min(h, t_max_s - t)
+        for i in range(3):
+            k[0, i], k[0, 3 + i] = y[3 + i], a[i]
+        for stage in range(1, STAGES + 1):  # the last is the solution's, at t + hi
+            state, node = (work, c[stage]) if stage < STAGES else (y_new, 1.0)
+            stage_state(stage, y, k, hi, state)
+            _derivative(t + node * hi, state, wind, air_code, drag_code, dynamics, k, stage)
+        for i in range(3):
+            a_new[i] = k[STAGES, 3 + i]
+        evaluations += STAGES
+        error = error_norm(y, y_new, k, hi, rtol, floor)
+        accept = error <= 1.0
+        factor = step_factor(error)
+        h = min(hi * (factor if accept else min(factor, 1.0)), max_step_s)
+        for level in breakpoints_m:
+            before = event_value(ALTITUDE, level, y)
+            after = event_value(ALTITUDE, level, y_new)
+            if np.sign(before) != np.sign(after):
+                fraction = crossing_fraction(ALTITUDE, level, t, t + hi, y, y_new, a, a_new, work)
+                if fraction * hi > MIN_CUT_S and fraction < 1 - STRADDLE:
+                    accept = False
+                    h = hi * fraction * (1 - 2 * STRADDLE)
+        if not accept:
+            continue
+        t_new = t + hi
+        count += 1
+        stopped = False
+        if math.isnan(apogee_t) and t_new > 0.0:
+            if event_value(RADIAL_VELOCITY, 0.0, y) > 0 >= event_value(RADIAL_VELOCITY, 0.0, y_new):
+                fraction = crossing_fraction(
+                    RADIAL_VELOCITY, 0.0, t, t_new, y, y_new, a, a_new, work
+                )
+                apogee_t = t + fraction * (t_new - t)
+                hermite(t, t_new, y, y_new, a, a_new, apogee_t, apogee)
+        if math.isnan(impact_t) and t_new > 1e-6:
+            if event_value(ALTITUDE, site_m, y) > 0 >= event_value(ALTITUDE, site_m, y_new):
+                fraction = crossing_fraction(ALTITUDE, site_m, t, t_new, y, y_new, a, a_new, work)
+                impact_t = t + fraction * (t_new - t)
+                hermite(t, t_new, y, y_new, a, a_new, impact_t, end)
+                stopped = True
+        t = t_new
+        for i in range(6):
+            y[i] = y_new[i]
+        for i in range(3):
+            a[i] = a_new[i]
+        if record:
+            if count == times.size:
+                times = _grow(times.reshape(1, -1), count)[0]
+                steps = _grow(steps, count)
+            times[count] = t
+            steps[:6, count], steps[6:, count] = y, a
+        if stopped or t >= t_max_s:
+            break
+    if math.isnan(impact_t):
+        end[:] = y
+    return (
+        apogee_t,
+        apogee,
+        impact_t,
+        end,
+        evaluations,
+        count,
+        times[: count + 1],
+        steps[:, : count + 1],
+    )
+
+
+@jit(inline=True)
+def _fly_all(y0, wind, air_code, drag_code, dynamics, numerics, record):
+    """:func:`_integrate` for every launch (columns of ``y0`` and ``wind``): the times of the
+    apogee and impact (2, n), the states there (2, 6, n), the evaluations and steps (2, n), and
+    the last launch's record of its steps (when ``record``)."""
+    n = y0.shape[1]
+    event_times = np.empty((2, n))
+    states = np.empty((2, 6, n))
+    counts = np.empty((2, n), np.int64)
+    step_times, steps = np.empty(0), np.empty((9, 0))
+    for i in range(n):
+        apogee_t, apogee, impact_t, end, evaluations, count, step_times, steps = _integrate(
+            y0[:, i].copy(), wind[:, i].copy(), air_code, drag_code, dynamics, numerics, record
+        )
+        event_times[0, i], event_times[1, i] = apogee_t, impact_t
+        states[0, :, i], states[1, :, i] = apogee, end
+        counts[0, i], counts[1, i] = evaluations, count
+    return event_times, states, counts, step_times, steps
+
+
+@jit(inline=True)
+def _rows(times_s, step_times, steps, wind, air_code, drag_code, dynamics):
+    """States (6, m) at ``times_s`` within the recorded steps, and the forces there: radius,
+    altitude, air speed, Mach, Cd and density (6, m)."""
+    m = times_s.size
+    states, forces = np.empty((6, m)), np.empty((6, m))
+    last = step_times.size - 2
+    for j in range(m):
+        i = min(max(np.searchsorted(step_times, times_s[j], side="right") - 1, 0), last)
+        y = states[:, j]
+        hermite(
+            step_times[i],
+            step_times[i + 1],
+            steps[:6, i],
+            steps[:6, i + 1],
+            steps[6:, i],
+            steps[6:, i + 1],
+            times_s[j],
+            y,
+        )
+        radius, altitude, _, _, _, air_speed, mach, cd, density = _forces(
+            times_s[j], y.copy(), wind, air_code, drag_code, dynamics
+        )
+        forces[0, j], forces[1, j], forces[2, j] = radius, altitude, air_speed
+        forces[3, j], forces[4, j], forces[5, j] = mach, cd, density
+    return states, forces
+
+
+@cache
+def _kernels(air_code: int, drag_code: int):
+    """The flights and the table rows compiled for one atmosphere and drag law: their numbers
+    are constants of the machine code, so the other models' branches fold away (half the time
+    of a right-hand side). Compiled at first use (:func:`warm_up`), then loaded from disk."""
+
+    @jit
+    def fly(y0, wind, dynamics, numerics, record):
+        return _fly_all(y0, wind, air_code, drag_code, dynamics, numerics, record)
+
+    @jit
+    def rows(times_s, step_times, steps, wind, dynamics):
+        return _rows(times_s, step_times, steps, wind, air_code, drag_code, dynamics)
+
+    return fly, rows
 
 
 def _numerics(rtol, max_time_s):
+    if type(rtol) is float and type(max_time_s) is float:  # the common case, checked cheaply
+        if 0.0 < rtol <= 1e-3 and 0.0 < max_time_s < math.inf:
+            return rtol, max_time_s
     rtol = float(
         check_range(finite_scalar(rtol, "rtol"), "rtol", low=0.0, low_inclusive=False, high=1e-3)
     )
@@ -109,101 +328,153 @@ def _launches(launches) -> list[Launch]:
     return launches
 
 
-def _run(launches: list[Launch], rtol, max_time_s):
-    first = launches[0]
-    projectile, omega = first.projectile, first.rotation_rate_rad_s
-    model = get_atmosphere(first.atmosphere)
-    site = first.site_altitude_m  # shared: the impact event sees states, not launch numbers
-    elevation, speed, latitude, longitude, bearing, head, cross = (
-        np.array([getattr(launch, name) for launch in launches], dtype=float)
-        for name in (
-            "elevation_deg",
-            "speed_m_s",
-            "latitude_deg",
-            "longitude_deg",
-            "bearing_deg",
-            "head_wind_m_s",
-            "cross_wind_m_s",
-        )
+class _Batch(NamedTuple):
+    """What the launches of one batch share, and each one's initial state and wind."""
+
+    codes: tuple[int, int]  # the atmosphere's and the drag law's
+    dynamics: tuple
+    omega: float
+    site_m: float
+    breakpoints_m: np.ndarray
+    y0: np.ndarray  # (6, n)
+    wind: np.ndarray  # (3, n)
+    up: np.ndarray  # (3, n)
+    downrange: np.ndarray  # (3, n)
+
+
+_STATE_FLOOR = np.array([earth.RADIUS_M] * 3 + [1e3] * 3)  # error scale floor: m, m/s
+_MAX_STEP_S = 20.0  # keeps the interpolated velocities between steps within ~1e-6 m/s
+
+
+@cache
+def _shared(projectile, atmosphere: str, omega: float) -> tuple:
+    """The kernels' numbers for a projectile, an atmosphere and an Earth rotation rate: the
+    models' codes, ``dynamics`` and the atmosphere's breakpoints (computed once)."""
+    model = get_atmosphere(atmosphere)
+    law = projectile.drag_law.kernel_parameters()
+    dynamics = (
+        model.table(),
+        *law[1:],
+        projectile.reference_area_m2 / (2 * projectile.mass_kg),  # the Cd-free drag, A / (2 m)
+        float(omega),
     )
-    el, lat, lon, brg = (np.radians(x) for x in (elevation, latitude, longitude, bearing))
+    return (model.code, law[0]), dynamics, np.array(model.breakpoints_m, dtype=float)
+
+
+def _batch(launches: list[Launch]) -> _Batch:
+    first = launches[0]
+    omega, site = first.rotation_rate_rad_s, first.site_altitude_m
+    codes, dynamics, breakpoints = _shared(first.projectile, first.atmosphere, omega)
+    elevation, speed, latitude, longitude, bearing, head, cross = np.array(
+        [
+            (
+                launch.elevation_deg,
+                launch.speed_m_s,
+                launch.latitude_deg,
+                launch.longitude_deg,
+                launch.bearing_deg,
+                launch.head_wind_m_s,
+                launch.cross_wind_m_s,
+            )
+            for launch in launches
+        ],
+        dtype=float,
+    ).T
+    el, lat, lon, brg = np.radians([elevation, latitude, longitude, bearing])
     up, downrange, _ = launch_frame(lat, lon, brg)
-    position = (earth.RADIUS_M + site) * up
+    position = (earth.RADIUS_M + site) * up  # site shared: the impact event sees states only
     ground_velocity = speed * (np.cos(el) * downrange + np.sin(el) * up)
     surface_velocity = omega * np.array([-position[1], position[0], np.zeros_like(lat)])
-    right = np.cross(downrange, up, axis=0)
-    dynamics = _Dynamics(
-        model,
-        projectile.drag_law,
-        projectile.reference_area_m2 / (2 * projectile.mass_kg),
-        projectile.mass_kg,
-        omega,
-        -head * downrange + cross * right,
-    )
-    y0 = np.concatenate([position, ground_velocity + surface_velocity])
-
-    def radial_velocity(t, y):
-        return np.sum(y[:3] * y[3:], axis=0)
-
-    def altitude(t, y):
-        return np.sqrt(np.sum(y[:3] ** 2, axis=0)) - earth.RADIUS_M
-
-    def above_site(t, y):
-        return altitude(t, y) - site
-
-    events = (
-        Event("apogee", radial_velocity),
-        Event("impact", above_site, terminal=True, after_s=1e-6),
+    right = cross_product(downrange, up)
+    return _Batch(
+        codes,
+        dynamics,
+        float(omega),
+        float(site),
+        breakpoints,
+        np.ascontiguousarray(np.concatenate([position, ground_velocity + surface_velocity])),
+        np.ascontiguousarray(-head * downrange + cross * right),
+        up,
+        downrange,
     )
 
-    def above_layer(boundary_m):
-        return lambda t, y: altitude(t, y) - boundary_m
 
-    breakpoints = tuple(Breakpoint(above_layer(b)) for b in model.breakpoints_m)
-    scale = np.array([earth.RADIUS_M] * 3 + [1e3] * 3)
-    solution = integrate_batch(
-        dynamics.acceleration,
-        y0,
-        t_max_s=max_time_s,
-        rtol=rtol,
-        state_scale=scale,
-        events=events,
-        breakpoints=breakpoints,
+def _ranges(batch: _Batch, times_s, positions, index=slice(None)):
+    """Ground and cross range (m) of inertial positions (3, m) at ``times_s``, measured on the
+    turning Earth from the launch point of launch ``index`` (one, or one per position)."""
+    earth_fixed = rotate_about_axis(positions, -batch.omega * times_s).T
+    return surface_ranges(earth_fixed, batch.up[:, index].T, batch.downrange[:, index].T)
+
+
+class Flights(NamedTuple):
+    """Apogee and end of every launch of a batch (:func:`fly_3dof`), arrays (n,) in SI units;
+    ``end`` is the impact, or the last time reached where ``impact`` is False."""
+
+    apogee_time_s: np.ndarray
+    apogee_altitude_m: np.ndarray
+    apogee_ground_range_m: np.ndarray
+    time_of_flight_s: np.ndarray
+    range_m: np.ndarray
+    cross_range_m: np.ndarray
+    impact_speed_m_s: np.ndarray
+    impact: np.ndarray
+    steps: np.ndarray
+    rhs_evaluations: np.ndarray
+
+
+def _fly(batch: _Batch, max_time_s: float, rtol: float, record: bool):
+    fly, _ = _kernels(*batch.codes)
+    numerics = (batch.site_m, batch.breakpoints_m, max_time_s, rtol, _STATE_FLOOR, _MAX_STEP_S)
+    return fly(batch.y0, batch.wind, batch.dynamics, numerics, record)
+
+
+def fly_3dof(launches, *, rtol: float = 1e-9, max_time_s: float = 3000.0) -> Flights:
+    """The apogee and impact of each launch in ``launches`` (one :class:`Launch` or a sequence
+    sharing one projectile, atmosphere, Earth rotation and site altitude), as arrays: the
+    3DOF's engine without its tables (:func:`simulate_3dof_batch` is this as a DataFrame)."""
+    launches = _launches(launches)
+    rtol, max_time_s = _numerics(rtol, max_time_s)
+    batch = _batch(launches)
+    event_times, states, counts, _, _ = _fly(batch, max_time_s, rtol, record=False)
+    apogee_t, impact_t = event_times
+    impact = np.isfinite(impact_t)
+    end_t = np.where(impact, impact_t, max_time_s)
+    n = apogee_t.size
+    ground, cross = _ranges(  # of the apogee and the end at once
+        batch,
+        np.concatenate([apogee_t, end_t]),
+        np.concatenate([states[0, :3], states[1, :3]], axis=1),
+        np.tile(np.arange(n), 2),
     )
-    return solution, dynamics, up, downrange
-
-
-def _table(solution, dynamics, up, downrange, index, times_s) -> pd.DataFrame:
-    """The tidy trajectory table (see :mod:`.trajectory`) of launch ``index`` at ``times_s``."""
-    y = solution.sample(index, times_s)
-    idx = np.full(times_s.size, index)
-    radius, altitude, _, air_speed, mach, cd, density = dynamics.forces(times_s, y, idx)
-    earth_fixed = rotate_about_axis(y[:3], -dynamics.rotation_rate_rad_s * times_s).T
-    ground, cross = surface_ranges(earth_fixed, up[:, index], downrange[:, index])
-    drag = dynamics.drag_factor_m2_kg * density * cd * air_speed**2
-    columns = dict(
-        time_s=times_s,
-        x_m=y[0],
-        y_m=y[1],
-        z_m=y[2],
-        altitude_m=altitude,
-        ground_range_m=ground,
-        cross_range_m=cross,
-        speed_m_s=np.sqrt(np.sum(y[3:] ** 2, axis=0)),
-        mach=mach,
-        drag_coefficient=cd,
-        drag_to_gravity=drag / (earth.GM_M3_S2 / radius**2),
-        specific_angular_momentum_m2_s=np.linalg.norm(np.cross(y[:3].T, y[3:].T), axis=1),
-        flight_path_angle_rad=flight_path_angle(y[:3].T, y[3:].T),
+    apogee_ground, ground, cross = ground[:n], ground[n:], cross[n:]
+    reached = np.isfinite(apogee_t)
+    return Flights(
+        apogee_t,
+        np.where(reached, np.linalg.norm(states[0, :3], axis=0) - earth.RADIUS_M, np.nan),
+        np.where(reached, apogee_ground, np.nan),
+        end_t,
+        ground,
+        cross,
+        np.linalg.norm(states[1, 3:], axis=0),
+        impact,
+        counts[1],
+        counts[0],
     )
-    return pd.DataFrame({name: columns[name] for name in BASE_COLUMNS})
 
 
-def _apogee_and_end(solution, index):
-    apogee_t = solution.event_times["apogee"][index]
-    impact_t = solution.event_times["impact"][index]
-    end_t = impact_t if np.isfinite(impact_t) else solution.times[index][-1]
-    return apogee_t, bool(np.isfinite(impact_t)), end_t
+def warm_up() -> None:
+    """Compile the 3DOF's kernels now (or load them from the disk cache), not at first use: one
+    per pair of atmosphere and drag law of the named projectiles (about 11 s each, once)."""
+    from .atmosphere import ATMOSPHERE_NAMES
+    from .projectiles import PROJECTILE_NAMES, get_projectile
+
+    laws = {get_projectile(name).drag_law.code: get_projectile(name) for name in PROJECTILE_NAMES}
+    for projectile in laws.values():
+        for atmosphere in ATMOSPHERE_NAMES:
+            launch = Launch(projectile, projectile.launch_speed_m_s, 45.0, atmosphere=atmosphere)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", TruncatedFlightWarning)
+                simulate_3dof(launch, max_time_s=1.0)  # a short flight compiles every kernel
 
 
 def simulate_3dof(
@@ -224,22 +495,50 @@ def simulate_3dof(
     step = positive_scalar(output_step_s, "output_step_s", "s")
     launches = _launches(launch)
     rtol, max_time_s = _numerics(rtol, max_time_s)
-    solution, dynamics, up, downrange = _run(launches, rtol, max_time_s)
-    apogee_t, impact, end_t = _apogee_and_end(solution, 0)
+    batch = _batch(launches)
+    event_times, states, counts, step_times, steps = _fly(batch, max_time_s, rtol, record=True)
+    (apogee_t, impact_t), apogee, (evaluations, count) = event_times[:, 0], states[0, :, 0], counts
+    impact = bool(np.isfinite(impact_t))
+    end_t = impact_t if impact else step_times[-1]
     times = np.append(np.arange(0.0, end_t, step), end_t)
-    table = _table(solution, dynamics, up, downrange, 0, times)
-    apogee = None
+    y, forces = _kernels(*batch.codes)[1](
+        times, step_times, steps, batch.wind[:, 0], batch.dynamics
+    )
+    radius, altitude, air_speed, mach, cd, density = forces
+    ground, cross = _ranges(batch, times, y[:3], 0)
+    drag = batch.dynamics[4] * density * cd * air_speed**2
+    columns = dict(
+        time_s=times,
+        x_m=y[0],
+        y_m=y[1],
+        z_m=y[2],
+        altitude_m=altitude,
+        ground_range_m=ground,
+        cross_range_m=cross,
+        speed_m_s=np.sqrt(np.sum(y[3:] ** 2, axis=0)),
+        mach=mach,
+        drag_coefficient=cd,
+        drag_to_gravity=drag / (earth.GM_M3_S2 / radius**2),
+        specific_angular_momentum_m2_s=np.linalg.norm(np.cross(y[:3].T, y[3:].T), axis=1),
+        flight_path_angle_rad=flight_path_angle(y[:3].T, y[3:].T),
+    )
+    table = pd.DataFrame({name: columns[name] for name in BASE_COLUMNS})
+    top = None
     if np.isfinite(apogee_t):
-        top = _table(solution, dynamics, up, downrange, 0, np.array([apogee_t])).iloc[0]
-        apogee = (apogee_t, top.altitude_m, top.ground_range_m)
+        apogee_ground, _ = _ranges(batch, np.array([apogee_t]), apogee[:3, None], 0)
+        top = (
+            apogee_t,
+            float(np.linalg.norm(apogee[:3]) - earth.RADIUS_M),
+            float(apogee_ground[0]),
+        )
     return describe(
         table,
         engine="3DOF",
         launch=launches[0],
-        apogee=apogee,
+        apogee=top,
         impact=impact,
-        rhs_evaluations=solution.rhs_evaluations,
-        steps=int(solution.steps[0]),
+        rhs_evaluations=int(evaluations[0]),
+        steps=int(count[0]),
         max_time_s=max_time_s,
         rtol=rtol,
     )
@@ -248,41 +547,29 @@ def simulate_3dof(
 def simulate_3dof_batch(
     launches, *, rtol: float = 1e-9, max_time_s: float = 3000.0
 ) -> pd.DataFrame:
-    """Many 3DOF launches integrated together: ``launches`` is a sequence of :class:`Launch`
-    sharing one projectile, atmosphere, Earth rotation and site altitude (e.g.
+    """Many 3DOF launches: ``launches`` is a sequence of :class:`Launch` sharing one
+    projectile, atmosphere, Earth rotation and site altitude (e.g.
     ``[launch.but(elevation_deg=e) for e in elevations]``). One row per launch: its elevation,
     speed, bearing and latitude, and the metadata keys of :func:`simulate_3dof` (but
-    ``engine``, ``launch`` and the batch-wide ``rhs_evaluations``, which are in
-    ``frame.attrs``). Same physics and integrator as :func:`simulate_3dof`, which is a batch of
-    one."""
+    ``engine`` and ``launch``, and ``rhs_evaluations``, the batch's total, which are in
+    ``frame.attrs``). Same physics and integrator as :func:`simulate_3dof`."""
     launches = _launches(launches)
-    rtol, max_time_s = _numerics(rtol, max_time_s)
-    solution, dynamics, up, downrange = _run(launches, rtol, max_time_s)
-    rows = []
-    for i, launch in enumerate(launches):
-        apogee_t, impact, end_t = _apogee_and_end(solution, i)
-        times = np.array([apogee_t if np.isfinite(apogee_t) else end_t, end_t])
-        table = _table(solution, dynamics, up, downrange, i, times)
-        rows.append(
-            dict(
-                elevation_deg=launch.elevation_deg,
-                speed_m_s=launch.speed_m_s,
-                bearing_deg=launch.bearing_deg,
-                latitude_deg=launch.latitude_deg,
-                apogee_time_s=apogee_t,
-                apogee_altitude_m=table.altitude_m[0] if np.isfinite(apogee_t) else np.nan,
-                apogee_ground_range_m=table.ground_range_m[0] if np.isfinite(apogee_t) else np.nan,
-                time_of_flight_s=end_t,
-                range_m=table.ground_range_m[1],
-                cross_range_m=table.cross_range_m[1],
-                impact_speed_m_s=table.speed_m_s[1],
-                impact=impact,
-                stop_reason="impact" if impact else "max_time",
-                steps=int(solution.steps[i]),
-            )
-        )
-    summary = pd.DataFrame(rows)
-    missed = int((~summary.impact).sum())
+    flights = fly_3dof(launches, rtol=rtol, max_time_s=max_time_s)
+    summary = pd.DataFrame(
+        {
+            **{
+                name: np.array([getattr(launch, name) for launch in launches], dtype=float)
+                for name in ("elevation_deg", "speed_m_s", "bearing_deg", "latitude_deg")
+            },
+            **{name: getattr(flights, name) for name in Flights._fields[:-1]},
+        }
+    )
+    summary.insert(
+        summary.columns.get_loc("impact") + 1,
+        "stop_reason",
+        np.where(flights.impact, "impact", "max_time"),
+    )
+    missed = int((~flights.impact).sum())
     if missed:
         warnings.warn(
             f"{missed} of {len(summary)} 3DOF launches did not return to the ground "
@@ -293,7 +580,7 @@ def simulate_3dof_batch(
     summary.attrs.update(
         engine="3DOF",
         projectile=launches[0].projectile.name,
-        rhs_evaluations=solution.rhs_evaluations,
+        rhs_evaluations=int(flights.rhs_evaluations.sum()),
         rtol=rtol,
     )
     return summary

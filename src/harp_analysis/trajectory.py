@@ -33,6 +33,7 @@ import warnings
 
 import numpy as np
 
+from .compiled import formula
 from .earth import RADIUS_M
 from .validation import ModelValidityWarning
 
@@ -43,7 +44,9 @@ __all__ = [
     "TruncatedFlightWarning",
     "describe",
     "launch_frame",
+    "cross_product",
     "rotate_about_axis",
+    "turned_about_axis",
     "surface_ranges",
     "flight_path_angle",
 ]
@@ -69,16 +72,21 @@ def surface_ranges(position_m, launch_up, launch_downrange):
     """Ground range and cross range (m) of Earth-centred positions ``position_m`` (..., 3).
 
     ``launch_up`` is the unit vector from the Earth's centre to the launch point and
-    ``launch_downrange`` the unit horizontal vector along the launch bearing; cross range is
-    positive to the right of the line of fire (along ``downrange x up``).
+    ``launch_downrange`` the unit horizontal vector along the launch bearing (each (3,), or
+    (..., 3) with one launch per position); cross range is positive to the right of the line of
+    fire (along ``downrange x up``).
     """
     position = np.asarray(position_m, dtype=float)
     up = np.asarray(launch_up, dtype=float)
     downrange = np.asarray(launch_downrange, dtype=float)
     right = np.cross(downrange, up)
     radius = np.linalg.norm(position, axis=-1)
-    out_of_plane = np.arcsin(np.clip(position @ right / radius, -1.0, 1.0))
-    in_plane = np.arctan2(position @ downrange, position @ up)
+
+    def along(direction):
+        return np.einsum("...i,...i->...", position, direction)
+
+    out_of_plane = np.arcsin(np.clip(along(right) / radius, -1.0, 1.0))
+    in_plane = np.arctan2(along(downrange), along(up))
     return RADIUS_M * in_plane, RADIUS_M * out_of_plane
 
 
@@ -160,19 +168,33 @@ def describe(
     return frame
 
 
+def cross_product(a, b):
+    """The cross product of 3-vectors along the first axis, (3, ...) each: ``np.cross(a, b,
+    axis=0)`` without its generality (a tenth of its time on a launch's vectors)."""
+    return np.array(
+        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    )
+
+
 def launch_frame(latitude_rad, longitude_rad, bearing_rad):
     """Unit vectors (3, n) at the launch point in the Earth-centred frame (z north, x toward
     longitude 0): up, downrange (along the bearing from true north) and east."""
     lat, lon, bearing = np.broadcast_arrays(latitude_rad, longitude_rad, bearing_rad)
     up = np.array([np.cos(lat) * np.cos(lon), np.cos(lat) * np.sin(lon), np.sin(lat)])
     east = np.array([-np.sin(lon), np.cos(lon), np.zeros_like(lon)])
-    north = np.cross(up, east, axis=0)
+    north = cross_product(up, east)
     downrange = np.sin(bearing) * east + np.cos(bearing) * north
     return up, downrange, east
 
 
+@formula
+def turned_about_axis(x, y, angle_rad):
+    """The x and y components of a vector turned by ``angle_rad`` about the Earth's axis (z)."""
+    c, s = np.cos(angle_rad), np.sin(angle_rad)
+    return c * x - s * y, s * x + c * y
+
+
 def rotate_about_axis(vectors, angle_rad):
     """Rotate (3, n) vectors by ``angle_rad`` (n,) about the Earth's axis (z)."""
-    c, s = np.cos(angle_rad), np.sin(angle_rad)
     x, y, z = vectors
-    return np.array([c * x - s * y, s * x + c * y, z])
+    return np.array([*turned_about_axis(x, y, angle_rad), z])

@@ -1,0 +1,48 @@
+"""What every benchmark measures with: best times (interleaved, so a busy machine slows every
+case alike), peak memory, a target's verdict, and the cold start of a fresh process."""
+
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import tracemalloc
+
+
+def interleaved_best(functions: dict, rounds: int = 5) -> dict:
+    """Best time (s) of each function over ``rounds`` rounds that call each in turn."""
+    best = dict.fromkeys(functions, math.inf)
+    for _ in range(rounds):
+        for name, function in functions.items():
+            start = time.perf_counter()
+            function()
+            best[name] = min(best[name], time.perf_counter() - start)
+    return best
+
+
+def best_of(function, repeat: int = 5, number: int = 1) -> float:
+    """Best of ``repeat`` timings of ``number`` calls of ``function``, per call (s)."""
+    return interleaved_best({"": lambda: [function() for _ in range(number)]}, repeat)[""] / number
+
+
+def peak_memory_bytes(function) -> int:
+    """The peak of the memory Python allocates while ``function`` runs (tracemalloc)."""
+    tracemalloc.start()
+    function()
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    return peak
+
+
+def verdict(value: float, target: float) -> str:
+    return "met" if value <= target else f"missed by {value / target:.2f}x"
+
+
+def cold_start_s(code: str) -> float:
+    """Seconds that ``code`` (which prints them last) takes in a fresh process whose compiled
+    kernels start from an empty cache."""
+    with tempfile.TemporaryDirectory() as empty:
+        env = dict(os.environ, NUMBA_CACHE_DIR=empty)
+        result = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True)
+    return float(result.stdout.split()[-1])

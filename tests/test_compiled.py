@@ -1,0 +1,72 @@
+"""Compiled kernels: one source for numpy and numba, the same numbers from both, and a disk cache
+that a change to any formula a kernel reaches invalidates."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from harp_analysis import atmosphere, compiled, drag, effort, threedof
+from harp_analysis.launch import HP_CHAPTER_2, baseline_chapter_4
+
+ALTITUDES_M = st.floats(min_value=0.0, max_value=99_000.0)
+
+
+@settings(max_examples=60, deadline=None)
+@given(altitude_m=ALTITUDES_M)
+def test_compiled_air_is_the_numpy_formulas(altitude_m):
+    """Every model's compiled density and speed of sound equal its numpy formulas (libm's exp
+    and pow may differ from numpy's in the last bit)."""
+    for name in atmosphere.ATMOSPHERE_NAMES:
+        model = atmosphere.get_atmosphere(name)
+        density, sound = atmosphere.air(model.code, altitude_m, model.table())
+        assert density == pytest.approx(float(model.density_kernel(np.array(altitude_m))), 1e-14)
+        assert sound == pytest.approx(float(model.sound_kernel(np.array(altitude_m))), rel=1e-14)
+
+
+@settings(max_examples=60, deadline=None)
+@given(mach=st.floats(min_value=0.0, max_value=10.0))
+def test_compiled_drag_coefficient_is_the_law(mach):
+    for law in (drag.BASELINE_CONE, drag.M829.zero_yaw_drag()):
+        code, *tables = law.kernel_parameters()
+        assert drag.drag_coefficient(code, mach, *tables) == pytest.approx(
+            float(law.evaluate(mach)), rel=1e-14
+        )
+
+
+def test_select_is_where_on_arrays_and_a_choice_on_numbers():
+    assert np.array_equal(compiled.select(np.array([True, False]), 1.0, 2.0), [1.0, 2.0])
+    choose = compiled.jit(lambda flag: compiled.select(flag, 1.0, 2.0))
+    assert choose(True) == 1.0 and choose(False) == 2.0
+    assert isinstance(choose(True), float)  # a number, not numba's 0-d array of np.where
+
+
+def test_the_cache_folder_follows_every_formula_a_kernel_reaches():
+    """numba alone would keep a kernel compiled against an old formula of another module."""
+    sources = {path.name for path in compiled._sources("harp_analysis.threedof")}
+    assert {"threedof.py", "integrator.py", "atmosphere.py", "drag.py", "compiled.py"} <= sources
+    assert "effort.py" not in sources  # an analysis the engine does not reach
+
+
+def test_a_vector_counts_once_as_numpy_s_does():
+    def per_component(x, y):
+        return compiled.vector(x[0] - y[0] * 2.0, x[1] - y[1], x[2])
+
+    def numpy_vector(x, y):
+        return x - y * 2.0
+
+    assert effort.count_flops(per_component) == effort.count_flops(numpy_vector) == 2
+
+
+@pytest.mark.parametrize("launch", [baseline_chapter_4(45.0), HP_CHAPTER_2])
+def test_batch_and_single_flight_are_the_same_integration(launch):
+    """fly_3dof (a batch's kernel) and simulate_3dof (one flight with its table) run the same
+    compiled integration: the same steps, evaluations, apogee and impact."""
+    table = threedof.simulate_3dof(launch).attrs
+    flights = threedof.fly_3dof([launch, launch.but(elevation_deg=70.0), launch])
+    for i in (0, 2):
+        assert flights.steps[i] == table["steps"]
+        assert flights.rhs_evaluations[i] == table["rhs_evaluations"]
+        assert flights.apogee_altitude_m[i] == pytest.approx(table["apogee_altitude_m"], 1e-12)
+        assert flights.range_m[i] == pytest.approx(table["range_m"], rel=1e-12)
+        assert flights.time_of_flight_s[i] == pytest.approx(table["time_of_flight_s"], 1e-12)
