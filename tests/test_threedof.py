@@ -410,3 +410,14 @@ def test_m829_zero_yaw_drag_is_minus_cx0_and_holds_outside_the_table():
         law(-1.0)
     with pytest.raises(ValueError, match="mach table"):
         TabulatedDragLaw((0.0, 0.0), (1.0, 1.0))
+
+
+@pytest.mark.parametrize("rising", [False, True])
+def test_a_flight_can_end_where_it_crosses_an_altitude(rising):
+    """fly_3dof ends on the way down (or up) through end_altitude_m: there the radius is
+    R + that altitude, and a rising crossing comes before the apogee, a falling one after."""
+    flights = threedof.fly_3dof(BASELINE_45, end_altitude_m=30e3, rising=rising)
+    radius = np.linalg.norm(flights.end_position_m[:, 0])
+    assert radius - earth.RADIUS_M == pytest.approx(30e3, abs=1e-4)
+    before_apogee = flights.time_of_flight_s[0] < flights.apogee_time_s[0]
+    assert flights.impact[0] and before_apogee == rising

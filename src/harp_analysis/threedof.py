@@ -128,14 +128,15 @@ def _grow(array, size):
 @jit(inline=True)
 def _integrate(y0, wind, air_code, drag_code, dynamics, numerics, record):
     """One flight from ``y0`` until it falls back to the site or reaches ``t_max_s``;
-    ``numerics`` is ``(site_m, breakpoints_m, t_max_s, rtol, floor, max_step_s)``: the site's
-    altitude, the atmosphere's breakpoints and the integrator's settings (:func:`_fly`).
+    ``numerics`` is ``(end_m, end_sign, breakpoints_m, t_max_s, rtol, floor, max_step_s)``: the
+    altitude that ends the flight, falling through it (``end_sign`` +1) or rising (-1), the
+    atmosphere's breakpoints and the integrator's settings (:func:`_fly`).
 
     Returns the times of the apogee and impact (NaN if not reached), the state (6,) at each (the
     last state for an impact not reached), the right-hand-side evaluations and accepted steps,
     and, if ``record``, every accepted step: times (k,) and states with accelerations (9, k).
     """
-    site_m, breakpoints_m, t_max_s, rtol, floor, max_step_s = numerics
+    end_m, end_sign, breakpoints_m, t_max_s, rtol, floor, max_step_s = numerics
     k = np.empty((STAGES + 1, 6))
     y, y_new, work = y0.copy(), np.empty(6), np.empty(6)
     start = np.empty((2, 6))  # y' at the start and a trial step later
@@ -195,8 +196,9 @@ def _integrate(y0, wind, air_code, drag_code, dynamics, numerics, record):
                 apogee_t = t + fraction * (t_new - t)
                 hermite(t, t_new, y, y_new, a, a_new, apogee_t, apogee)
         if math.isnan(impact_t) and t_new > 1e-6:
-            if event_value(ALTITUDE, site_m, y) > 0 >= event_value(ALTITUDE, site_m, y_new):
-                fraction = crossing_fraction(ALTITUDE, site_m, t, t_new, y, y_new, a, a_new, work)
+            above, after = event_value(ALTITUDE, end_m, y), event_value(ALTITUDE, end_m, y_new)
+            if end_sign * above > 0 >= end_sign * after:
+                fraction = crossing_fraction(ALTITUDE, end_m, t, t_new, y, y_new, a, a_new, work)
                 impact_t = t + fraction * (t_new - t)
                 hermite(t, t_new, y, y_new, a, a_new, impact_t, end)
                 stopped = True
@@ -420,22 +422,49 @@ class Flights(NamedTuple):
     impact: np.ndarray
     steps: np.ndarray
     rhs_evaluations: np.ndarray
+    end_position_m: np.ndarray  # (3, n) Earth-fixed (the inertial frame at t = 0)
 
 
-def _fly(batch: _Batch, max_time_s: float, rtol: float, record: bool):
+def _fly(
+    batch: _Batch, max_time_s: float, rtol: float, record: bool, end=None, rising: bool = False
+):
     fly, _ = _kernels(*batch.codes)
-    numerics = (batch.site_m, batch.breakpoints_m, max_time_s, rtol, _STATE_FLOOR, _MAX_STEP_S)
+    end_m = batch.site_m if end is None else end
+    numerics = (
+        float(end_m),
+        -1.0 if rising else 1.0,
+        batch.breakpoints_m,
+        max_time_s,
+        rtol,
+        _STATE_FLOOR,
+        _MAX_STEP_S,
+    )
     return fly(batch.y0, batch.wind, batch.dynamics, numerics, record)
 
 
-def fly_3dof(launches, *, rtol: float = 1e-9, max_time_s: float = 3000.0) -> Flights:
-    """The apogee and impact of each launch in ``launches`` (one :class:`Launch` or a sequence
+def fly_3dof(
+    launches,
+    *,
+    rtol: float = 1e-9,
+    max_time_s: float = 3000.0,
+    end_altitude_m: float | None = None,
+    rising: bool = False,
+) -> Flights:
+    """The apogee and end of each launch in ``launches`` (one :class:`Launch` or a sequence
     sharing one projectile, atmosphere, Earth rotation and site altitude), as arrays: the
-    3DOF's engine without its tables (:func:`simulate_3dof_batch` is this as a DataFrame)."""
+    3DOF's engine without its tables (:func:`simulate_3dof_batch` is this as a DataFrame).
+
+    A flight ends where it falls back to the site's altitude, or to ``end_altitude_m`` (m) if
+    given, or rises through it if ``rising`` (a target above the gun on the way up); ``impact``
+    says whether it got there before ``max_time_s``."""
     launches = _launches(launches)
     rtol, max_time_s = _numerics(rtol, max_time_s)
+    if end_altitude_m is not None:
+        end_altitude_m = float(finite_scalar(end_altitude_m, "end_altitude_m"))
     batch = _batch(launches)
-    event_times, states, counts, _, _ = _fly(batch, max_time_s, rtol, record=False)
+    event_times, states, counts, _, _ = _fly(
+        batch, max_time_s, rtol, record=False, end=end_altitude_m, rising=rising
+    )
     apogee_t, impact_t = event_times
     impact = np.isfinite(impact_t)
     end_t = np.where(impact, impact_t, max_time_s)
@@ -448,6 +477,7 @@ def fly_3dof(launches, *, rtol: float = 1e-9, max_time_s: float = 3000.0) -> Fli
     )
     apogee_ground, ground, cross = ground[:n], ground[n:], cross[n:]
     reached = np.isfinite(apogee_t)
+    end_position = rotate_about_axis(states[1, :3], -batch.omega * end_t)
     return Flights(
         apogee_t,
         np.where(reached, np.linalg.norm(states[0, :3], axis=0) - earth.RADIUS_M, np.nan),
@@ -459,6 +489,7 @@ def fly_3dof(launches, *, rtol: float = 1e-9, max_time_s: float = 3000.0) -> Fli
         impact,
         counts[1],
         counts[0],
+        end_position,
     )
 
 
@@ -561,7 +592,7 @@ def simulate_3dof_batch(
                 name: np.array([getattr(launch, name) for launch in launches], dtype=float)
                 for name in ("elevation_deg", "speed_m_s", "bearing_deg", "latitude_deg")
             },
-            **{name: getattr(flights, name) for name in Flights._fields[:-1]},
+            **{name: getattr(flights, name) for name in Flights._fields[:-2]},
         }
     )
     summary.insert(
