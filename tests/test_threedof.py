@@ -415,9 +415,16 @@ def test_m829_zero_yaw_drag_is_minus_cx0_and_holds_outside_the_table():
 @pytest.mark.parametrize("rising", [False, True])
 def test_a_flight_can_end_where_it_crosses_an_altitude(rising):
     """fly_3dof ends on the way down (or up) through end_altitude_m: there the radius is
-    R + that altitude, and a rising crossing comes before the apogee, a falling one after."""
+    R + that altitude; a rising crossing ends the flight before its apogee, a falling one after
+    it, at the time the full flight passes that altitude."""
     flights = threedof.fly_3dof(BASELINE_45, end_altitude_m=30e3, rising=rising)
     radius = np.linalg.norm(flights.end_position_m[:, 0])
+    assert flights.impact[0]
     assert radius - earth.RADIUS_M == pytest.approx(30e3, abs=1e-4)
-    before_apogee = flights.time_of_flight_s[0] < flights.apogee_time_s[0]
-    assert flights.impact[0] and before_apogee == rising
+    assert np.isnan(flights.apogee_time_s[0]) == rising
+    table = threedof.simulate_3dof(BASELINE_45, output_step_s=0.01)
+    climbing = table.time_s < table.attrs["apogee_time_s"]
+    half = table[climbing if rising else ~climbing]
+    height = half.altitude_m if rising else -half.altitude_m  # increasing, for np.interp
+    crossing = np.interp(30e3 if rising else -30e3, height, half.time_s)
+    assert flights.time_of_flight_s[0] == pytest.approx(crossing, abs=1e-3)
