@@ -27,7 +27,8 @@ def best_of(function, repeat: int = 5, number: int = 1) -> float:
 
 
 def peak_memory_bytes(function) -> int:
-    """The peak of the memory Python allocates while ``function`` runs (tracemalloc)."""
+    """The peak of the memory allocated while ``function`` runs, as tracemalloc sees it: Python's
+    and numpy's, not what compiled kernels allocate themselves (their arrays, scratch)."""
     tracemalloc.start()
     function()
     peak = tracemalloc.get_traced_memory()[1]
@@ -44,5 +45,9 @@ def cold_start_s(code: str) -> float:
     kernels start from an empty cache."""
     with tempfile.TemporaryDirectory() as empty:
         env = dict(os.environ, NUMBA_CACHE_DIR=empty)
-        result = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True)
+        result = subprocess.run(
+            [sys.executable, "-c", code], env=env, capture_output=True, text=True, check=False
+        )
+    if result.returncode:
+        raise RuntimeError(f"the cold-start process failed:\n{result.stderr}")
     return float(result.stdout.split()[-1])

@@ -70,3 +70,26 @@ def test_batch_and_single_flight_are_the_same_integration(launch):
         assert flights.apogee_altitude_m[i] == pytest.approx(table["apogee_altitude_m"], 1e-12)
         assert flights.range_m[i] == pytest.approx(table["range_m"], rel=1e-12)
         assert flights.time_of_flight_s[i] == pytest.approx(table["time_of_flight_s"], 1e-12)
+
+
+def test_a_module_imported_for_a_constant_counts_in_the_digest():
+    """trajectory.py takes only a number from earth.py, which numba bakes into machine code."""
+    from pathlib import Path
+
+    from harp_analysis import trajectory
+
+    assert "earth.py" in {path.name for path in compiled._imported(Path(trajectory.__file__))}
+
+
+def test_unknown_model_numbers_are_refused_in_compiled_code():
+    with pytest.raises(ValueError, match="unknown atmosphere code"):
+        atmosphere.air(99, 1000.0, np.zeros((3, 2)))
+    with pytest.raises(ValueError, match="unknown drag law code"):
+        drag.drag_coefficient(99, 2.0, np.zeros(3), np.zeros(2), np.zeros(2))
+
+
+def test_a_flight_that_cannot_be_integrated_raises_instead_of_looping():
+    batch = threedof._batch([baseline_chapter_4(45.0)])
+    poisoned = batch._replace(y0=np.full_like(batch.y0, np.nan))
+    with pytest.raises(FloatingPointError, match="could not integrate launch 0"):
+        threedof._fly(poisoned, 3000.0, 1e-9, record=False)

@@ -383,3 +383,12 @@ def test_arguments_of_different_lengths_are_refused():
 
 def test_warm_up_compiles_the_kernels():
     mks.warm_up()
+
+
+def test_the_constants_are_read_only_views():
+    """Writing to a constant would not change the solution (its table feeds the kernels)."""
+    solution = mks.for_launch(baseline_chapter_4(45.0))
+    with pytest.raises(ValueError, match="read-only"):
+        solution.c1[0, 0] = 0.0
+    angle = solution.apogee_angle
+    assert angle == solution.apogee_angle

@@ -278,7 +278,9 @@ def air(code, altitude_m, table):
         return _two_segment_density(altitude_m), sound
     if code == EXPONENTIAL:
         return _text_exponential_density(altitude_m), sound
-    return 0.0, sound
+    if code == VACUUM:
+        return 0.0, sound
+    raise ValueError("unknown atmosphere code: only the registered models are compiled")
 
 
 _MODELS = {

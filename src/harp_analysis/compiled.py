@@ -19,14 +19,14 @@ compiles too (as numpy's ``searchsorted``).
 
 from __future__ import annotations
 
+import ast
 import hashlib
 import os
 import sys
+import threading
 from bisect import bisect_right
 from collections.abc import Callable
-from functools import cache
 from pathlib import Path
-from types import ModuleType
 from typing import Any, TypeVar
 
 import numba
@@ -39,34 +39,49 @@ __all__ = ["jit", "formula", "select", "vector", "cache_folder"]
 F = TypeVar("F", bound=Callable[..., Any])
 
 
+_PACKAGE = Path(__file__).parent
+
+
+def _imported(source: Path) -> set[Path]:
+    """The package's source files that ``source`` imports (``from . import x``, ``from .x
+    import y``, ``import harp_analysis.x``), constants included: numba bakes them in."""
+    found: set[Path] = set()
+    for node in ast.walk(ast.parse(source.read_text())):
+        if isinstance(node, ast.ImportFrom):
+            module = node.module or ""
+            if not node.level:  # absolute: only the package's own modules count
+                if module != __package__ and not module.startswith(f"{__package__}."):
+                    continue
+                module = module.removeprefix(str(__package__)).lstrip(".")
+            base = _PACKAGE.joinpath(*module.split(".")) if module else _PACKAGE
+            candidates = [base / f"{alias.name}.py" for alias in node.names]
+            if module:
+                candidates.append(base.with_suffix(".py"))
+            found.update(path for path in candidates if path.is_file())
+        elif isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name.startswith(f"{__package__}."):
+                    found.add(_PACKAGE.joinpath(*alias.name.split(".")[1:]).with_suffix(".py"))
+    return found
+
+
 def _sources(module_name: str) -> list[Path]:
-    """The package's source files that ``module_name`` reaches through what it has imported."""
-    seen, pending = set(), [module_name]
+    """The package's source files that ``module_name`` reaches, import by import."""
+    seen: set[Path] = set()
+    pending = [Path(str(sys.modules[module_name].__file__))]
     while pending:
-        name = pending.pop()
-        if name in seen:
-            continue
-        seen.add(name)
-        for value in vars(sys.modules[name]).values():
-            owner = (
-                value.__name__
-                if isinstance(value, ModuleType)
-                else getattr(value, "__module__", "")
-            )
-            if (
-                isinstance(owner, str)
-                and owner.startswith(f"{__package__}.")
-                and owner in sys.modules
-            ):
-                pending.append(owner)
-    return sorted(Path(str(sys.modules[name].__file__)) for name in seen)
+        source = pending.pop()
+        if source not in seen:
+            seen.add(source)
+            pending.extend(_imported(source))
+    return sorted(seen)
 
 
-@cache
 def cache_folder(module_name: str) -> Path:
     """Where the compiled kernels of ``module_name`` are kept: under ``NUMBA_CACHE_DIR`` if set,
     else the user's cache folder, in a folder named by a digest of every source file of the
-    package that the module reaches (an edit to any of them compiles afresh)."""
+    package that the module reaches, as they are now (an edit to any of them, or a reload after
+    one, compiles afresh)."""
     digest = hashlib.sha256()
     for source in _sources(module_name):
         digest.update(source.name.encode() + source.read_bytes())
@@ -74,6 +89,9 @@ def cache_folder(module_name: str) -> Path:
         os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
     )
     return Path(root) / "harp-analysis" / digest.hexdigest()[:16]
+
+
+_CACHE_DIR_LOCK = threading.Lock()  # numba reads its global CACHE_DIR where caching starts
 
 
 def jit(function: F | None = None, *, inline: bool = False) -> Any:
@@ -84,12 +102,13 @@ def jit(function: F | None = None, *, inline: bool = False) -> Any:
     if function is None:
         return lambda function: jit(function, inline=inline)
     config: Any = numba.config
-    previous = config.CACHE_DIR
-    config.CACHE_DIR = str(cache_folder(function.__module__))  # read where caching starts
-    try:
-        return numba.njit(cache=True, inline="always" if inline else "never")(function)
-    finally:
-        config.CACHE_DIR = previous
+    folder = str(cache_folder(function.__module__))
+    with _CACHE_DIR_LOCK:
+        previous, config.CACHE_DIR = config.CACHE_DIR, folder
+        try:
+            return numba.njit(cache=True, inline="always" if inline else "never")(function)
+        finally:
+            config.CACHE_DIR = previous
 
 
 def formula(function: F) -> F:
@@ -106,8 +125,9 @@ def vector(x, y, z):
 
 
 def select(condition, if_true, if_false):
-    """``if_true`` where ``condition`` holds, else ``if_false``: ``np.where`` (both evaluated,
-    as numpy does); on a plain bool, and in compiled code on numbers, one of the two."""
+    """``if_true`` where ``condition`` holds, else ``if_false``: ``np.where`` on arrays, the
+    chosen one of two numbers on a plain bool and in compiled code (both are evaluated before
+    the call in every case: the formulas count both, as numpy computes both)."""
     if isinstance(condition, bool):
         return if_true if condition else if_false
     return np.where(condition, if_true, if_false)

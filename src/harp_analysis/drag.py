@@ -72,7 +72,9 @@ def drag_coefficient(code, mach, parameters, table_mach, table_cd):
     compiled loops (unchecked, like ``evaluate``)."""
     if code == EXPONENTIAL_LAW:
         return _exponential(mach, parameters[0], parameters[1], parameters[2])
-    return _tabulated(mach, table_mach, table_cd)
+    if code == TABULATED_LAW:
+        return _tabulated(mach, table_mach, table_cd)
+    raise ValueError("unknown drag law code: only ExponentialDragLaw and TabulatedDragLaw compile")
 
 
 @dataclass(frozen=True)

@@ -20,10 +20,11 @@ factors of Chapter 5 enter as two scales: the driving function's beta is multipl
 ``drive_scale`` (cos mu (Vrel/V)^2, eqs 6.9-6.10) and the decay h_inf = h0 exp(-beta
 ``decay_scale``) by ``decay_scale`` (cos mu, eq 6.14); both are 1 on a non-rotating Earth.
 
-The per-launch work (the constants, the checks of the launch conditions and of escape, eq 6.4's
-apogee, Newton's iterations for the first zero of du/dtheta and for the impact) runs compiled,
-one pass over the launches (:mod:`.compiled`; :func:`warm_up` compiles it ahead of use). The
-conic part is evaluated about eq 6.4's angle theta_6.4 = atan2(-c1, -c2), as
+The per-launch work runs compiled (:mod:`.compiled`; :func:`warm_up` compiles it ahead of use):
+the constants, the checks of the launch conditions and of escape and eq 6.4's apogee in one
+pass at construction, Newton's iterations for the first zero of du/dtheta and for the impact
+in another when first asked for; a single launch of plain numbers takes them all in one call.
+The conic part is evaluated about eq 6.4's angle theta_6.4 = atan2(-c1, -c2), as
 c1 sin(theta) + c2 cos(theta) = -rho cos(theta - theta_6.4) with rho = sqrt(c1^2 + c2^2): at
 eq 6.4's apogee it takes no sine or cosine, and near it only those of a small angle.
 
@@ -168,7 +169,7 @@ def _argument(
 
 # --- compiled kernels -------------------------------------------------------------------------
 # A solution keeps its constants in a table with one row per quantity and one column per launch
-# (rows are contiguous arrays): h0, h_inf, c1, c2, rho = hypot(c1, c2), eq 6.4's apse angle,
+# (rows are contiguous arrays): h0, h_inf, c1, c2, rho = sqrt(c1^2 + c2^2), eq 6.4's apse angle,
 # the asymptotic conic's eccentricity, eq 6.4's apogee altitude, then the amplitudes A_n.
 _H0, _H_INF, _C1, _C2, _RHO, _APSE, _ECCENTRICITY, _APOGEE_6_4, _AMPLITUDES = range(9)
 #: The escape check looks at the angle where the driving terms have died: e^{-tau theta} = e^-20.
@@ -186,10 +187,16 @@ def _at(values, i):
     return values[min(i, values.size - 1)]
 
 
+def _read_only(view: np.ndarray) -> np.ndarray:
+    """``view`` marked read-only: the table behind it feeds the kernels."""
+    view.flags.writeable = False
+    return view
+
+
 @jit
 def _sin_cos(angle):
     """sin and cos of ``angle``. Below 1/32 rad (the offsets from the apse where Newton's
-    iterations for the apogee look), Taylor polynomials to x^8, exact to within an ulp: libm
+    iterations for the apogee look), Taylor polynomials to x^7 and x^8, within an ulp: libm
     takes 8 ns for the pair at any argument, which costs the apogees 4 ns a launch."""
     if abs(angle) >= 1 / 32:
         return math.sin(angle), math.cos(angle)
@@ -204,7 +211,7 @@ def _point(table, i, tau, theta):
     """u, du/dtheta and d2u/dtheta2 of launch ``i`` (column ``i`` of ``table``) at ``theta``.
 
     The conic part c1 sin(theta) + c2 cos(theta) is written about eq 6.4's angle, the apse:
-    -rho cos(theta - apse), with rho = hypot(c1, c2). The series sum_n A_n e^{-n tau theta}
+    -rho cos(theta - apse), with rho = sqrt(c1^2 + c2^2). The series sum_n A_n e^{-n tau theta}
     raises one exponential to each power by products."""
     rho = table[_RHO, i]
     sin, cos = _sin_cos(theta - table[_APSE, i])
@@ -379,8 +386,8 @@ class ModifiedKeplerSolution:
     ``escapes`` (m,) marks launches that leave on an open one: their apogee and impact are NaN.
     Constants that cannot reproduce the launch conditions (a grazing elevation) raise.
 
-    The per-launch work (constants, checks, apogee, impact) runs compiled, one pass over the
-    launches (:func:`warm_up` compiles it ahead of use).
+    The per-launch work (constants, checks, apogee, impact) runs compiled (:func:`warm_up`
+    compiles it ahead of use). The constants' attributes are read-only views.
     """
 
     def __init__(
@@ -475,22 +482,22 @@ class ModifiedKeplerSolution:
     @property
     def h0(self):
         """Launch angular momentum h0 = V r0 cos(phi0) (m^2/s), eq 6.13."""
-        return self._table[_H0, :, None]
+        return _read_only(self._table[_H0, :, None])
 
     @property
     def h_inf(self):
         """Asymptotic angular momentum h_inf = h0 exp(-beta decay_scale) (m^2/s), eq 3.23."""
-        return self._table[_H_INF, :, None]
+        return _read_only(self._table[_H_INF, :, None])
 
     @property
     def c3(self):
         """c3 = GM / h_inf^2 (1/m), eq 6.8: the amplitude of the series' first term."""
-        return self._table[_AMPLITUDES, :, None]
+        return _read_only(self._table[_AMPLITUDES, :, None])
 
     @property
     def amplitudes(self):
         """A_n, shape (m, N): the amplitudes of the series' terms e^{-n tau theta}."""
-        return self._table[_AMPLITUDES:].T
+        return _read_only(self._table[_AMPLITUDES:].T)
 
     @property
     def rates(self):
@@ -500,17 +507,17 @@ class ModifiedKeplerSolution:
     @property
     def c1(self):
         """c1 (1/m) of u = c1 sin(theta) + c2 cos(theta) + ..., set by u'(0) = -tan(phi0)/r0."""
-        return self._table[_C1, :, None]
+        return _read_only(self._table[_C1, :, None])
 
     @property
     def c2(self):
         """c2 (1/m), set by u(0) = 1/r0."""
-        return self._table[_C2, :, None]
+        return _read_only(self._table[_C2, :, None])
 
     @property
     def asymptotic_eccentricity(self):
         """Eccentricity (m,) of the conic the solution ends on."""
-        return self._table[_ECCENTRICITY]
+        return _read_only(self._table[_ECCENTRICITY])
 
     # --- the solution and its derivatives ----------------------------------------------------
     def _out(self, value):
@@ -596,7 +603,7 @@ class ModifiedKeplerSolution:
     def apogee_angle(self):
         """The first zero of du/dtheta (rad), by Newton iteration from eq 6.4; NaN for a launch
         that escapes (:attr:`escapes`)."""
-        return self._out(self._first_zero_apogee[0])
+        return self._out(self._first_zero_apogee[0].copy())
 
     def _newton_failed(self, what, index):
         """ValueError naming the elevation if Newton's iteration for ``what`` has left the
@@ -636,6 +643,7 @@ class ModifiedKeplerSolution:
             angle,
         )
         self._newton_failed("impact", failed)
+        angle.flags.writeable = False  # cached: a caller's edit would corrupt it
         return self._out(angle)
 
     def sample(self, theta_rad, order: int = 3) -> dict:

@@ -423,7 +423,7 @@ def _states_at(model: RigidBodyModel, segments: list[_Segment], times: np.ndarra
     starts = np.array([segment.time_s for segment in segments])
     index = np.clip(np.searchsorted(starts, times, side="right") - 1, 0, len(segments) - 1)
     coefficients = np.array(
-        [(*segment.coefficients[:8], *segment.coefficients.gravity) for segment in segments]
+        [(*segment.coefficients[:_GRAVITY], *segment.coefficients.gravity) for segment in segments]
     )
     lengths = (times - starts[index]) * coefficients[index, 0] / model.d
     return _propagate_rows(
@@ -435,6 +435,13 @@ def _states_at(model: RigidBodyModel, segments: list[_Segment], times: np.ndarra
         index,
         lengths,
     )
+
+
+# Compiled code takes a segment's coefficients as a row: the 8 numbers before ``gravity``, then
+# its 3 components (the dynamic pressure, for the validity check only, is left out).
+_GRAVITY = SegmentCoefficients._fields.index("gravity")
+if (_GRAVITY, SegmentCoefficients._fields[-1]) != (8, "dynamic_pressure"):
+    raise ImportError("_propagate_rows unpacks SegmentCoefficients by position: update it")
 
 
 @jit

@@ -160,6 +160,7 @@ def _integrate(y0, wind, air_code, drag_code, dynamics, numerics, record):
     apogee_t, impact_t = math.nan, math.nan
     apogee, end = np.empty(6), np.empty(6)
     c = TABLEAU[2]
+    failed = False
     while True:
         hi = min(h, t_max_s - t)
         for i in range(3):
@@ -172,6 +173,9 @@ def _integrate(y0, wind, air_code, drag_code, dynamics, numerics, record):
             a_new[i] = k[STAGES, 3 + i]
         evaluations += STAGES
         error = error_norm(y, y_new, k, hi, rtol, floor)
+        if not math.isfinite(error) or hi <= 1e-12 * max(1.0, t):
+            failed = True  # a non-finite derivative, or a step too small to advance t
+            break
         accept = error <= 1.0
         factor = step_factor(error)
         h = min(hi * (factor if accept else min(factor, 1.0)), max_step_s)
@@ -224,6 +228,7 @@ def _integrate(y0, wind, air_code, drag_code, dynamics, numerics, record):
         end,
         evaluations,
         count,
+        failed,
         times[: count + 1],
         steps[:, : count + 1],
     )
@@ -232,20 +237,21 @@ def _integrate(y0, wind, air_code, drag_code, dynamics, numerics, record):
 @jit(inline=True)
 def _fly_all(y0, wind, air_code, drag_code, dynamics, numerics, record):
     """:func:`_integrate` for every launch (columns of ``y0`` and ``wind``): the times of the
-    apogee and impact (2, n), the states there (2, 6, n), the evaluations and steps (2, n), and
-    the last launch's record of its steps (when ``record``)."""
+    apogee and impact (2, n), the states there (2, 6, n), the evaluations, steps and whether the
+    integration failed (3, n), and the last launch's record of its steps (when ``record``)."""
     n = y0.shape[1]
     event_times = np.empty((2, n))
     states = np.empty((2, 6, n))
-    counts = np.empty((2, n), np.int64)
+    counts = np.empty((3, n), np.int64)
     step_times, steps = np.empty(0), np.empty((9, 0))
     for i in range(n):
-        apogee_t, apogee, impact_t, end, evaluations, count, step_times, steps = _integrate(
+        flight = _integrate(
             y0[:, i].copy(), wind[:, i].copy(), air_code, drag_code, dynamics, numerics, record
         )
+        apogee_t, apogee, impact_t, end, evaluations, count, failed, step_times, steps = flight
         event_times[0, i], event_times[1, i] = apogee_t, impact_t
         states[0, :, i], states[1, :, i] = apogee, end
-        counts[0, i], counts[1, i] = evaluations, count
+        counts[0, i], counts[1, i], counts[2, i] = evaluations, count, failed
     return event_times, states, counts, step_times, steps
 
 
@@ -428,6 +434,7 @@ class Flights(NamedTuple):
 def _fly(
     batch: _Batch, max_time_s: float, rtol: float, record: bool, end=None, rising: bool = False
 ):
+    """The compiled flights of ``batch``; FloatingPointError if one cannot be integrated."""
     fly, _ = _kernels(*batch.codes)
     end_m = batch.site_m if end is None else end
     numerics = (
@@ -439,7 +446,14 @@ def _fly(
         _STATE_FLOOR,
         _MAX_STEP_S,
     )
-    return fly(batch.y0, batch.wind, batch.dynamics, numerics, record)
+    flights = fly(batch.y0, batch.wind, batch.dynamics, numerics, record)
+    failed = np.flatnonzero(flights[2][2])
+    if failed.size:
+        raise FloatingPointError(
+            f"the 3DOF could not integrate launch {failed[0]} of {batch.y0.shape[1]}: a "
+            "non-finite acceleration or a step too small to advance the time"
+        )
+    return flights
 
 
 def fly_3dof(
@@ -528,7 +542,11 @@ def simulate_3dof(
     rtol, max_time_s = _numerics(rtol, max_time_s)
     batch = _batch(launches)
     event_times, states, counts, step_times, steps = _fly(batch, max_time_s, rtol, record=True)
-    (apogee_t, impact_t), apogee, (evaluations, count) = event_times[:, 0], states[0, :, 0], counts
+    (apogee_t, impact_t), apogee, (evaluations, count) = (
+        event_times[:, 0],
+        states[0, :, 0],
+        counts[:2],
+    )
     impact = bool(np.isfinite(impact_t))
     end_t = impact_t if impact else step_times[-1]
     times = np.append(np.arange(0.0, end_t, step), end_t)
