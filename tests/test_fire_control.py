@@ -1,0 +1,238 @@
+"""Fire control against closed forms (the vacuum conic), the exact vacuum case on a rotating
+Earth, the 3DOF itself, and bad input."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy import optimize
+
+from harp_analysis import earth, eci, kepler, threedof
+from harp_analysis.fire_control import (
+    FiringSolution,
+    TargetPoint,
+    firing_solutions,
+    verify_with_3dof,
+)
+from harp_analysis.launch import Launch
+from harp_analysis.projectiles import HP
+from harp_analysis.sites import BARBADOS
+
+SPEED = HP.launch_speed_m_s
+VACUUM = Launch(HP, SPEED, 45.0, atmosphere="vacuum")
+ROTATING = Launch(
+    HP,
+    SPEED,
+    45.0,
+    latitude_deg=math.degrees(BARBADOS.latitude_rad),
+    longitude_deg=-59.6,  # Barbados
+    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+)
+
+
+def _destination(gun: Launch, bearing_deg, distance_m, altitude_m=0.0, **kwargs) -> TargetPoint:
+    """The point ``distance_m`` along the great circle from the gun (spherical trigonometry)."""
+    lat1, angle = gun.latitude_rad, distance_m / earth.RADIUS_M
+    bearing = math.radians(bearing_deg)
+    lat2 = math.asin(
+        math.sin(lat1) * math.cos(angle) + math.cos(lat1) * math.sin(angle) * math.cos(bearing)
+    )
+    dlon = math.atan2(
+        math.sin(bearing) * math.sin(angle) * math.cos(lat1),
+        math.cos(angle) - math.sin(lat1) * math.sin(lat2),
+    )
+    return TargetPoint(
+        math.degrees(lat2), gun.longitude_deg + math.degrees(dlon), altitude_m, **kwargs
+    )
+
+
+# --- vacuum, non-rotating: the closed-form conic ------------------------------------------------
+def _conic_u(elevation_rad, range_angle_rad):
+    """Eq 3.8 from the surface: u(Theta) with h = R V cos(phi), u(0) = 1/R, u'(0) = -tan/R."""
+    r0 = earth.RADIUS_M
+    c3 = earth.GM_M3_S2 / (r0 * SPEED * math.cos(elevation_rad)) ** 2
+    return (
+        c3
+        + (1 / r0 - c3) * math.cos(range_angle_rad)
+        - math.tan(elevation_rad) / r0 * math.sin(range_angle_rad)
+    )
+
+
+def _maximum_range_elevation():
+    fit = optimize.minimize_scalar(
+        lambda phi: -kepler.ballistic_conic(SPEED, phi).range_angle_rad,
+        bounds=(0.1, 1.4),
+        method="bounded",
+        options=dict(xatol=1e-12),
+    )
+    return fit.x, float(-fit.fun)
+
+
+@pytest.mark.parametrize("distance_km, altitude_m", [(20.0, 0.0), (250.0, 0.0), (250.0, 30e3)])
+def test_vacuum_matches_the_closed_form_conic(distance_km, altitude_m):
+    best, _ = _maximum_range_elevation()
+    angle = distance_km * 1e3 / earth.RADIUS_M
+    target = TargetPoint(0.0, math.degrees(angle), altitude_m)
+
+    def miss(phi):
+        return _conic_u(phi, angle) - 1 / (earth.RADIUS_M + altitude_m)
+
+    low = optimize.brentq(miss, 1e-3, best, xtol=1e-15)
+    high = optimize.brentq(miss, best, math.pi / 2 - 1e-6, xtol=1e-15)
+    result = firing_solutions(VACUUM, target)
+    assert result.reason is None
+    assert result.low.elevation_deg == pytest.approx(math.degrees(low), abs=1e-6)
+    assert result.high.elevation_deg == pytest.approx(math.degrees(high), abs=1e-6)
+    for root in result.roots:
+        assert root.bearing_deg == pytest.approx(90.0, abs=1e-9)  # due east along the equator
+        assert root.beta == 0.0 and root.beta_valid
+        assert root.miss_m < 1e-3
+    if distance_km == 20.0 and altitude_m == 0.0:  # near flat: complementary angles
+        assert result.low.elevation_deg + result.high.elevation_deg == pytest.approx(90, abs=0.1)
+
+
+def test_vacuum_roots_merge_at_the_maximum_range_and_vanish_beyond_it():
+    best, range_angle = _maximum_range_elevation()
+    near = firing_solutions(VACUUM, TargetPoint(0.0, math.degrees(0.995 * range_angle)))
+    assert near.low.elevation_deg < math.degrees(best) < near.high.elevation_deg
+    assert near.high.elevation_deg - near.low.elevation_deg < 10.0
+    beyond = firing_solutions(VACUUM, TargetPoint(0.0, math.degrees(1.01 * range_angle)))
+    assert beyond.low is None and beyond.high is None
+    assert "maximum range" in beyond.reason
+
+
+# --- rotating Earth -----------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def rotating_vacuum():
+    gun = ROTATING.but(atmosphere="vacuum")
+    target = _destination(gun, 40.0, 150e3)
+    return gun, target, firing_solutions(gun, target)
+
+
+def test_rotating_vacuum_mks_is_exact_against_the_3dof(rotating_vacuum):
+    """Without air the ECI MKS is the inertial Kepler conic: the 3DOF lands on the target."""
+    gun, target, result = rotating_vacuum
+    for root in result.roots:
+        check = verify_with_3dof(gun, target, root)
+        assert check.mks_miss_m < 1e-3
+        assert abs(check.elevation_change_deg) < 1e-8 and abs(check.bearing_change_deg) < 1e-8
+
+
+def test_the_ascending_root_meets_the_turning_target_on_the_public_eci_path():
+    """Rebuild the MKS with eci.solution_for_launch, find where it rises through the target's
+    radius with brentq, and compare with the target turned by omega t."""
+    target = _destination(ROTATING, 120.0, 60e3, altitude_m=40e3)
+    result = firing_solutions(ROTATING, target, branch="ascending")
+    assert result.roots
+    for root in result.roots:
+        launch = ROTATING.but(elevation_deg=root.elevation_deg, bearing_deg=root.bearing_deg)
+        correction = eci.correction_for_launch(launch)
+        solution = eci.solution_for(correction, warn=False)
+        radius = earth.RADIUS_M + target.altitude_m
+        theta = optimize.brentq(
+            lambda t: solution.radius(t)[0] - radius,
+            0.0,
+            float(solution.apogee_angle),
+            xtol=1e-15,
+        )
+        time = float(solution.time(np.linspace(0, theta, 400)[1:])[-1])
+        assert time == pytest.approx(root.time_of_flight_s, rel=1e-9)
+        point = eci.inertial_positions(solution, correction, ROTATING.latitude_rad, [theta])[0]
+        # the MKS's frame has the gun at longitude 0; the target turns east by omega t
+        lat = math.radians(target.latitude_deg)
+        lon = math.radians(target.longitude_deg - ROTATING.longitude_deg)
+        lon += earth.ROTATION_RATE_RAD_S * time
+        aim = radius * np.array(
+            [math.cos(lat) * math.cos(lon), math.cos(lat) * math.sin(lon), math.sin(lat)]
+        )
+        assert np.linalg.norm(point - aim) < 1e-3
+
+
+@pytest.fixture(scope="module")
+def hp_targets():
+    surface = _destination(ROTATING, 60.0, 150e3)
+    aloft = _destination(ROTATING, 60.0, 150e3, altitude_m=30e3)
+    return [(target, firing_solutions(ROTATING, target)) for target in (surface, aloft)]
+
+
+def test_the_refined_solution_lands_the_3dof_on_the_target(hp_targets):
+    for target, result in hp_targets:
+        assert result.low is not None and result.high is not None, result.reason
+        for root in result.roots:
+            check = verify_with_3dof(ROTATING, target, root)
+            assert check.converged, check.message
+            flight = threedof.fly_3dof(
+                ROTATING.but(elevation_deg=check.elevation_deg, bearing_deg=check.bearing_deg),
+                end_altitude_m=target.altitude_m,
+            )
+            assert flight.impact[0]
+            distance = np.linalg.norm(flight.end_position_m[:, 0] - target.earth_fixed_m())
+            assert distance < 1.0
+            # the MKS's own miss is reported, finite, and smaller than the range itself
+            assert 0.0 < check.mks_miss_m < 150e3
+            assert check.flights >= 3
+
+
+def test_fire_time_is_the_arrival_time_less_the_time_of_flight():
+    target = _destination(ROTATING, 60.0, 150e3)
+    timed = firing_solutions(ROTATING, TargetPoint(**{**target.__dict__, "arrival_time_s": 400}))
+    assert timed.low.fire_time_s == pytest.approx(400 - timed.low.time_of_flight_s, abs=1e-9)
+    late = firing_solutions(ROTATING, TargetPoint(**{**target.__dict__, "arrival_time_s": 200}))
+    assert late.low is not None and late.high is None  # the lob takes longer than 200 s
+    assert "arrival_time_s" in late.reason
+
+
+# --- unreachable targets: results with reasons --------------------------------------------------
+def test_unreachable_targets_say_why():
+    far = firing_solutions(ROTATING, _destination(ROTATING, 60.0, 3000e3))
+    assert far.roots == [] and "maximum range" in far.reason
+    high = firing_solutions(ROTATING, _destination(ROTATING, 60.0, 50e3, altitude_m=2000e3))
+    assert high.roots == [] and "maximum altitude" in high.reason
+    target = _destination(ROTATING, 60.0, 150e3)
+    fenced = firing_solutions(ROTATING, target, bearing_limits_deg=(180.0, 300.0))
+    assert fenced.roots == [] and "bearing_limits_deg" in fenced.reason
+    wrapped = firing_solutions(ROTATING, target, bearing_limits_deg=(300.0, 90.0))
+    assert len(wrapped.roots) == 2
+    escaping = firing_solutions(VACUUM.but(speed_m_s=12e3), TargetPoint(0.0, 5.0))
+    assert escaping.roots == [] and "escape" in escaping.reason
+
+
+# --- bad input: refused by name -----------------------------------------------------------------
+def test_bad_input_is_refused_by_name():
+    target = TargetPoint(1.0, 1.0)
+    with pytest.raises(ValueError, match="arrival_time_s"):
+        TargetPoint(1.0, 1.0, arrival_time_s=-1.0)
+    with pytest.raises(TypeError, match="gun"):
+        firing_solutions("HP", target)
+    with pytest.raises(ValueError, match="site_altitude_m"):
+        firing_solutions(VACUUM.but(site_altitude_m=100.0), target)
+    with pytest.raises(TypeError, match="target"):
+        firing_solutions(VACUUM, (1.0, 1.0))
+    with pytest.raises(ValueError, match="branch"):
+        firing_solutions(VACUUM, target, branch="up")
+    with pytest.raises(ValueError, match="bearing_limits_deg"):
+        firing_solutions(VACUUM, target, bearing_limits_deg=(0.0, 400.0))
+    with pytest.raises(TypeError, match="bearing_limits_deg"):
+        firing_solutions(VACUUM, target, bearing_limits_deg=90.0)
+    with pytest.raises(TypeError, match="solution"):
+        verify_with_3dof(VACUUM, target, None)
+    assert isinstance(firing_solutions(VACUUM, target).low, FiringSolution)
+
+
+_ILLEGAL = {
+    "latitude_deg": st.floats().filter(lambda v: not -90.0 <= v <= 90.0),
+    "longitude_deg": st.floats().filter(lambda v: not -180.0 <= v <= 360.0),
+    "altitude_m": st.floats().filter(lambda v: not v >= 0.0 or math.isinf(v)),
+    "arrival_time_s": st.floats().filter(lambda v: not v >= 0.0 or math.isinf(v)),
+}
+
+
+@settings(max_examples=60, deadline=None)
+@given(data=st.data(), name=st.sampled_from(sorted(_ILLEGAL)))
+def test_target_fields_are_refused_by_name(data, name):
+    value = data.draw(st.one_of(_ILLEGAL[name], st.text(max_size=3), st.booleans()))
+    fields = dict(latitude_deg=10.0, longitude_deg=20.0, altitude_m=0.0, arrival_time_s=None)
+    with pytest.raises((TypeError, ValueError), match=name):
+        TargetPoint(**{**fields, name: value})
