@@ -50,6 +50,7 @@ benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_sixdof.py
 	$(BIN)/python benchmarks/bench_mlt.py
 	$(BIN)/python benchmarks/bench_mks.py
+	$(BIN)/python benchmarks/bench_fire_control.py
 
 clean-venv:
 	rm -rf $(VENV)

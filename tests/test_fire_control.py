@@ -236,3 +236,133 @@ def test_target_fields_are_refused_by_name(data, name):
     fields = dict(latitude_deg=10.0, longitude_deg=20.0, altitude_m=0.0, arrival_time_s=None)
     with pytest.raises((TypeError, ValueError), match=name):
         TargetPoint(**{**fields, name: value})
+
+
+# --- part 2: Kepler targets and intercepts ------------------------------------------------------
+from scipy.integrate import solve_ivp  # noqa: E402
+
+from harp_analysis.fire_control import (  # noqa: E402
+    BARBADOS_HP,
+    KeplerTarget,
+    barbados_case,
+    intercept,
+    intercept_window,
+    raid,
+    shoot_3dof,
+)
+from harp_analysis.trajectory import rotate_about_axis  # noqa: E402
+
+
+def _two_body(t, y):
+    return np.r_[y[3:], -earth.GM_M3_S2 * y[:3] / np.linalg.norm(y[:3]) ** 3]
+
+
+def test_kepler_propagation_and_fall_match_the_integrated_two_body_problem():
+    target = raid(count=3)[1]
+    ground = target.ground_time_s
+
+    def lands(t, y):
+        return np.linalg.norm(y[:3]) - earth.RADIUS_M
+
+    lands.terminal = True
+    times = np.linspace(0.0, 0.99 * ground, 9)
+    reference = solve_ivp(
+        _two_body,
+        (0.0, 2 * ground),
+        np.r_[target.position_m, target.velocity_m_s],
+        method="DOP853",
+        rtol=1e-13,
+        atol=1e-9,
+        t_eval=times,
+        events=lands,
+    )
+    assert np.abs(reference.y[:3] - target.position_at(times)).max() < 1e-3
+    assert reference.t_events[0][0] == pytest.approx(ground, abs=1e-6)
+    assert target.position_at(5.0).shape == (3,)
+
+
+@pytest.mark.parametrize("altitude_fraction", [0.3, 0.7])
+def test_the_vacuum_intercept_meets_the_target_in_the_3dof(altitude_fraction):
+    """Without air the ECI MKS is exact: the 3DOF, fired at the intercept's fire time, crosses
+    the target's point within metres at the intercept time."""
+    gun = BARBADOS_HP.but(atmosphere="vacuum")
+    target = raid(gun, count=5)[2]
+    window = intercept_window(gun, target, count=20)
+    feasible = [item for item in window.intercepts if item.roots]
+    assert feasible, window.reason
+    item = feasible[int(altitude_fraction * (len(feasible) - 1))]
+    for root in item.roots:
+        flight = threedof.fly_3dof(
+            gun.but(elevation_deg=root.elevation_deg, bearing_deg=root.bearing_deg),
+            end_altitude_m=item.aim.altitude_m,
+            rising=True,
+        )
+        # the 3DOF's end point is Earth-fixed (x toward longitude 0): at the intercept time T
+        # it lies in the inertial frame turned by omega T, whichever moment the gun fired
+        fire, when = root.fire_time_s, item.intercept_time_s
+        end = rotate_about_axis(flight.end_position_m, [gun.rotation_rate_rad_s * when])[:, 0]
+        aim = rotate_about_axis(  # the target's inertial point, in the 3DOF's frame
+            target.position_at(item.intercept_time_s)[:, None],
+            [math.radians(gun.longitude_deg)],
+        )[:, 0]
+        arrival = fire + flight.time_of_flight_s[0]
+        speed = np.linalg.norm(target.velocity_m_s) + flight.impact_speed_m_s[0]
+        assert np.linalg.norm(end - aim) + abs(arrival - item.intercept_time_s) * speed < 5.0
+
+
+def test_an_intercept_needing_a_shot_before_now_is_no_solution():
+    target = raid(count=5)[2]
+    early = intercept(BARBADOS_HP, target, 0.2 * target.ground_time_s)
+    assert early.roots == [] and early.reason
+    window = intercept_window(BARBADOS_HP, target, count=30)
+    first = next(item for item in window.intercepts if item.aim and item.aim.altitude_m < 60e3)
+    late = intercept(BARBADOS_HP, target, first.intercept_time_s)
+    for root in late.roots:
+        assert root.fire_time_s >= 0.0
+    landed = intercept(BARBADOS_HP, target, target.ground_time_s + 1.0)
+    assert landed.aim is None and "ground" in landed.reason
+    with pytest.raises(ValueError, match="intercept_time_s"):
+        intercept(BARBADOS_HP, target, -1.0)
+    with pytest.raises(TypeError, match="target"):
+        intercept(BARBADOS_HP, "raid", 10.0)
+    with pytest.raises(ValueError, match="position_m"):
+        KeplerTarget([1.0, 0.0, 0.0], [0.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="velocity_m_s"):
+        KeplerTarget([earth.RADIUS_M, 0.0, 0.0], [0.0, 12e3, 0.0])
+
+
+def test_fire_before_now_is_refused_with_the_reason():
+    target = raid(count=5)[2]
+    window = intercept_window(BARBADOS_HP, target, count=30)
+    feasible = [item for item in window.intercepts if item.roots]
+    # the same point, reached by the same shots, but due sooner than any flight can get there
+    aim = feasible[0].aim
+    due = min(root.time_of_flight_s for root in feasible[0].roots) / 2
+    hurried = firing_solutions(
+        BARBADOS_HP, TargetPoint(**{**aim.__dict__, "arrival_time_s": due}), branch="ascending"
+    )
+    assert hurried.roots == [] and "before t = 0" in hurried.reason
+
+
+def test_the_window_is_ordered_and_its_fire_times_feasible():
+    window = intercept_window(BARBADOS_HP, raid(count=5)[2], count=30)
+    assert window.reason is None
+    assert window.earliest_intercept_s <= window.latest_intercept_s
+    assert 0.0 <= window.first_fire_s <= window.last_fire_s
+    assert window.time_to_fire_s >= 0.0
+    for item in window.intercepts:
+        for root in item.roots:
+            assert root.fire_time_s + root.time_of_flight_s == pytest.approx(item.intercept_time_s)
+
+
+def test_the_3dof_alone_lands_on_the_target_from_the_drag_free_conic():
+    gun, target = barbados_case()
+    shot = shoot_3dof(gun, target)
+    assert shot.converged, shot.message
+    flight = threedof.fly_3dof(
+        gun.but(elevation_deg=shot.elevation_deg, bearing_deg=shot.bearing_deg)
+    )
+    assert np.linalg.norm(flight.end_position_m[:, 0] - target.earth_fixed_m()) < 1.0
+    # drag shortens the range: the drag-free start is far off, and the gun must be raised
+    assert shot.mks_miss_m > 10e3 and shot.elevation_change_deg > 0
+    assert shot.rhs_evaluations > shot.flights

@@ -28,8 +28,10 @@ from scipy import optimize
 
 from . import earth, eci, mks, threedof
 from .launch import Launch
+from .projectiles import HP
+from .sites import BARBADOS
 from .trajectory import TruncatedFlightWarning, launch_frame, rotate_about_axis
-from .validation import check_choice, check_range, real_number
+from .validation import check_choice, check_range, finite_array, finite_scalar, real_number
 
 __all__ = [
     "TargetPoint",
@@ -40,6 +42,19 @@ __all__ = [
     "verify_with_3dof",
     "great_circle",
     "BRANCHES",
+    "KeplerTarget",
+    "Intercept",
+    "InterceptWindow",
+    "intercept",
+    "intercept_window",
+    "shoot_3dof",
+    "destination",
+    "raid",
+    "BARBADOS_HP",
+    "barbados_case",
+    "mks_solves_per_firing_solution",
+    "eom_evaluations_per_3dof_firing_solution",
+    "raid_intercepts_per_3dof_intercept",
 ]
 
 BRANCHES = ("descending", "ascending")
@@ -154,6 +169,7 @@ class Verification:
     flights: int  # 3DOF flights the refinement took, the check at the MKS solution included
     converged: bool  # scipy's test of its steps, or landed within _LANDED_M
     message: str
+    rhs_evaluations: int = 0  # of the 3DOF's equations of motion, over all its flights
 
 
 class _Gun:
@@ -373,7 +389,8 @@ def _refine(problem: _Problem, start, bounds, limits, arrival_time_s):
     fire_time = None if arrival_time_s is None else arrival_time_s - time
     if fire_time is not None and fire_time < 0:
         return None, (
-            f"its time of flight {time:.1f} s exceeds arrival_time_s = {arrival_time_s:g} s"
+            f"its time of flight {time:.1f} s exceeds arrival_time_s = {arrival_time_s:g} s: "
+            "it would have to be fired before t = 0"
         )
     apogee = float(solution.apogee_altitude())
     root = FiringSolution(
@@ -465,6 +482,58 @@ def firing_solutions(
     )
 
 
+class _Shooting:
+    """The 3DOF's shooting solve of (elevation, bearing) onto an Earth-fixed point (scipy's
+    root, finite differences), counting its flights and right-hand-side evaluations."""
+
+    def __init__(self, gun: Launch, target: TargetPoint, rising: bool, rtol: float):
+        self.gun, self.target, self.rising, self.rtol = gun, target, rising, rtol
+        self.aim = target.earth_fixed_m()  # the 3DOF's Earth-fixed frame: x toward longitude 0
+        self.flights = 0
+        self.rhs_evaluations = 0
+
+    def fly(self, x) -> threedof.Flights:
+        flight = threedof.fly_3dof(
+            self.gun.but(elevation_deg=math.degrees(x[0]), bearing_deg=math.degrees(x[1]) % 360.0),
+            rtol=self.rtol,
+            end_altitude_m=self.target.altitude_m,
+            rising=self.rising,
+        )
+        self.flights += 1
+        self.rhs_evaluations += int(flight.rhs_evaluations[0])
+        return flight
+
+    def miss(self, x) -> np.ndarray:
+        """East and north miss (m); a huge one, turning the solver back, where there is no
+        such gun or the shot never crosses the target's altitude."""
+        if not 0.0 < x[0] <= math.pi / 2:
+            return np.full(2, _SHORT_MISS_M)
+        flight = self.fly(x)
+        if not flight.impact[0]:
+            return np.full(2, _SHORT_MISS_M)
+        return _east_north(flight.end_position_m[:, 0] - self.aim, self.aim)
+
+    def solve(self, start, step_bound: float = 100.0):
+        """From ``start`` (elevation, bearing; rad): the miss there, scipy's fit and the flight
+        at its end; ``step_bound`` is hybr's ``factor`` (small for a start far from the root)."""
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", TruncatedFlightWarning)  # a cut-off flight misses
+            first = float(np.hypot(*self.miss(start)))
+            # a step of 1e-7 rad moves the end point by centimetres, far above the 3DOF's noise
+            fit = optimize.root(
+                self.miss,
+                start,
+                method="hybr",
+                options=dict(eps=1e-14, xtol=1e-10, factor=step_bound),
+            )
+            final = self.fly(fit.x)
+        if final.impact[0]:
+            miss = float(np.hypot(*_east_north(final.end_position_m[:, 0] - self.aim, self.aim)))
+        else:
+            miss = math.inf
+        return first, fit, final, miss
+
+
 def verify_with_3dof(
     gun: Launch, target: TargetPoint, solution: FiringSolution, *, rtol: float = 1e-9
 ) -> Verification:
@@ -476,35 +545,9 @@ def verify_with_3dof(
     target = _check_target(target)
     if not isinstance(solution, FiringSolution):
         raise TypeError(f"solution must be a FiringSolution; got {type(solution).__name__}")
-    aim = target.earth_fixed_m()  # the 3DOF's Earth-fixed frame has x toward longitude 0
-    flights = 0
-
-    def fly(x) -> threedof.Flights:
-        nonlocal flights
-        flights += 1
-        return threedof.fly_3dof(
-            gun.but(elevation_deg=math.degrees(x[0]), bearing_deg=math.degrees(x[1]) % 360.0),
-            rtol=rtol,
-            end_altitude_m=target.altitude_m,
-            rising=solution.branch == "ascending",
-        )
-
-    def miss(x):
-        if not 0.0 < x[0] <= math.pi / 2:  # no such gun: a miss that turns the solver back
-            return np.full(2, _SHORT_MISS_M)
-        flight = fly(x)
-        if not flight.impact[0]:  # never crossed the target's altitude
-            return np.full(2, _SHORT_MISS_M)
-        return _east_north(flight.end_position_m[:, 0] - aim, aim)
-
+    shooting = _Shooting(gun, target, solution.branch == "ascending", rtol)
     start = np.radians([solution.elevation_deg, solution.bearing_deg])
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", TruncatedFlightWarning)  # a cut-off flight misses
-        mks_miss = float(np.hypot(*miss(start)))
-        # a step of 1e-7 rad moves the end point by centimetres, far above the 3DOF's noise
-        fit = optimize.root(miss, start, method="hybr", options=dict(eps=1e-14, xtol=1e-10))
-        final = fly(fit.x)
-    residual = _east_north(final.end_position_m[:, 0] - aim, aim)
+    mks_miss, fit, final, miss = shooting.solve(start)
     elevation, bearing = math.degrees(fit.x[0]), math.degrees(fit.x[1]) % 360.0
     return Verification(
         mks_miss_m=mks_miss,
@@ -512,9 +555,451 @@ def verify_with_3dof(
         bearing_deg=bearing,
         elevation_change_deg=elevation - solution.elevation_deg,
         bearing_change_deg=(bearing - solution.bearing_deg + 180.0) % 360.0 - 180.0,
-        miss_m=float(np.hypot(*residual)) if final.impact[0] else math.inf,
+        miss_m=miss,
         time_of_flight_s=float(final.time_of_flight_s[0]),
-        flights=flights,
-        converged=bool(fit.success) or float(np.hypot(*residual)) <= _LANDED_M,
+        flights=shooting.flights,
+        converged=bool(fit.success) or miss <= _LANDED_M,
         message=str(fit.message),
+        rhs_evaluations=shooting.rhs_evaluations,
     )
+
+
+# --- part 2: intercepts of a ballistic target (Chapter 7 A) -----------------------------------
+_KEPLER_ITERATIONS = 60
+_KEPLER_TOLERANCE_RAD = 1e-15
+
+
+@dataclass(frozen=True, eq=False)
+class KeplerTarget:
+    """A ballistic target after burnout: its position (m) and velocity (m/s) at ``epoch_s`` in
+    the inertial frame of the gun at t = 0 (x toward the gun's longitude on the equator, z
+    north), flying the drag-free Kepler conic (an ellipse: a ballistic target does not escape)."""
+
+    position_m: np.ndarray
+    velocity_m_s: np.ndarray
+    epoch_s: float = 0.0
+
+    def __post_init__(self):
+        for name in ("position_m", "velocity_m_s"):
+            vector = finite_array(getattr(self, name), name).astype(float)
+            if vector.shape != (3,):
+                raise ValueError(f"{name} must be a vector (3,); got shape {vector.shape}")
+            vector.flags.writeable = False
+            object.__setattr__(self, name, vector)
+        object.__setattr__(self, "epoch_s", finite_scalar(self.epoch_s, "epoch_s"))
+        radius = float(np.linalg.norm(self.position_m))
+        if radius < earth.RADIUS_M:
+            raise ValueError(
+                f"position_m lies {(earth.RADIUS_M - radius) / 1e3:.3f} km below the ground"
+            )
+        energy = 0.5 * float(self.velocity_m_s @ self.velocity_m_s) - earth.GM_M3_S2 / radius
+        if energy >= 0:
+            raise ValueError(
+                "velocity_m_s reaches escape speed: a ballistic target flies an ellipse"
+            )
+
+    @property
+    def semi_major_axis_m(self) -> float:
+        radius = float(np.linalg.norm(self.position_m))
+        speed2 = float(self.velocity_m_s @ self.velocity_m_s)
+        return 1.0 / (2.0 / radius - speed2 / earth.GM_M3_S2)
+
+    def _constants(self):
+        """a, sqrt(a), r0, sigma0 / sqrt(a), 1 - r0 / a and the mean motion of the Kepler
+        equation in the difference of eccentric anomaly from the epoch."""
+        a = self.semi_major_axis_m
+        r0 = float(np.linalg.norm(self.position_m))
+        sigma0 = float(self.position_m @ self.velocity_m_s) / math.sqrt(earth.GM_M3_S2)
+        return a, r0, sigma0 / math.sqrt(a), 1.0 - r0 / a, math.sqrt(earth.GM_M3_S2 / a**3)
+
+    def _anomaly(self, mean_rad: np.ndarray) -> np.ndarray:
+        """The change of eccentric anomaly dE solving n dt = dE + s (1 - cos dE) - c sin dE:
+        monotonic in dE (its slope is r/a > 0) and within 2 of n dt, so Newton's iteration
+        kept inside that bracket by bisection converges."""
+        _, _, s, c, _ = self._constants()
+        low, high = mean_rad - 2.0, mean_rad + 2.0
+        x = mean_rad.copy()
+        for _ in range(_KEPLER_ITERATIONS):
+            excess = x + s * (1 - np.cos(x)) - c * np.sin(x) - mean_rad
+            slope = 1 + s * np.sin(x) - c * np.cos(x)
+            high = np.where(excess > 0, x, high)
+            low = np.where(excess > 0, low, x)
+            step = x - excess / slope
+            new = np.where((step > low) & (step < high), step, 0.5 * (low + high))
+            done = np.max(np.abs(new - x), initial=0.0) <= _KEPLER_TOLERANCE_RAD * max(
+                1.0, float(np.max(np.abs(x), initial=0.0))
+            )
+            x = new
+            if done:
+                break
+        return x
+
+    def position_at(self, time_s) -> np.ndarray:
+        """Inertial position (m) at ``time_s`` (s, the gun's clock): (3,) for one time, (3, n)
+        for n; by Kepler's equation and the f and g functions."""
+        time = finite_array(time_s, "time_s")
+        dt = np.atleast_1d(time - self.epoch_s).astype(float)
+        a, r0, _, _, mean_motion = self._constants()
+        de = self._anomaly(mean_motion * dt)
+        f = 1 - a / r0 * (1 - np.cos(de))
+        g = dt - (de - np.sin(de)) / mean_motion
+        position = f * self.position_m[:, None] + g * self.velocity_m_s[:, None]
+        return position[:, 0] if time.ndim == 0 else position
+
+    @property
+    def ground_time_s(self) -> float:
+        """When (s, the gun's clock) it falls back to the ground (radius R) after the epoch;
+        inf if its perigee is above the ground. r(dE) = a + (r0 - a) cos dE + sigma0 sqrt(a)
+        sin dE falls through R where dE - psi = arccos((R - a) / (a e))."""
+        a, r0, s, _, mean_motion = self._constants()
+        amplitude = math.hypot(r0 - a, s * a)  # a e
+        if amplitude == 0 or (earth.RADIUS_M - a) / amplitude < -1:
+            return math.inf
+        psi = math.atan2(s * a, r0 - a)
+        de = (psi + math.acos(min((earth.RADIUS_M - a) / amplitude, 1.0))) % (2 * math.pi)
+        c = 1 - r0 / a
+        return self.epoch_s + (de + s * (1 - math.cos(de)) - c * math.sin(de)) / mean_motion
+
+
+@dataclass(frozen=True)
+class Intercept:
+    """The firing solutions that meet a Kepler target at ``intercept_time_s``: ``aim`` is its
+    point then, fixed to the Earth, with that arrival time (None if it has already landed)."""
+
+    intercept_time_s: float
+    aim: TargetPoint | None
+    low: FiringSolution | None
+    high: FiringSolution | None
+    reason: str | None
+    mks_solves: int
+
+    @property
+    def roots(self) -> list[FiringSolution]:
+        return [root for root in (self.low, self.high) if root is not None]
+
+
+def _check_kepler_target(target) -> KeplerTarget:
+    if not isinstance(target, KeplerTarget):
+        raise TypeError(f"target must be a KeplerTarget; got {type(target).__name__}")
+    return target
+
+
+def _aims(gun: Launch, target: KeplerTarget, times_s: np.ndarray) -> list[TargetPoint | None]:
+    """The target's points at ``times_s`` (n,) fixed to the Earth (None below the ground), each
+    with its time as the arrival time: a gun fired at t_f launches from the frame at t = 0
+    turned by omega t_f, so meeting the inertial point P at T is reaching the Earth-fixed point
+    P turned back by omega T, at T."""
+    fixed = rotate_about_axis(
+        target.position_at(times_s).reshape(3, -1), -gun.rotation_rate_rad_s * times_s
+    )
+    radius = np.linalg.norm(fixed, axis=0)
+    latitude = np.degrees(np.arcsin(np.clip(fixed[2] / radius, -1.0, 1.0)))
+    longitude = (np.degrees(np.arctan2(fixed[1], fixed[0])) + gun.longitude_deg + 180) % 360 - 180
+    return [
+        TargetPoint(float(lat), float(lon), float(r - earth.RADIUS_M), arrival_time_s=float(t))
+        if r >= earth.RADIUS_M
+        else None
+        for lat, lon, r, t in zip(latitude, longitude, radius, times_s, strict=True)
+    ]
+
+
+def _check_intercept_times(times_s, target: KeplerTarget) -> np.ndarray:
+    times = np.atleast_1d(finite_array(times_s, "intercept_time_s")).astype(float)
+    if times.ndim != 1:
+        raise ValueError(f"intercept times must be a sequence (n,); got shape {times.shape}")
+    passed = times[times < 0.0]
+    if passed.size:
+        raise ValueError(
+            f"intercept_time_s = {passed[0]:g} s has already passed: it must be >= 0 "
+            "(seconds after t = 0, now)"
+        )
+    early = times[times < target.epoch_s]
+    if early.size:
+        raise ValueError(
+            f"intercept_time_s = {early[0]:g} s is before the target's epoch_s "
+            f"{target.epoch_s:g} s (burnout): its conic starts there"
+        )
+    return times
+
+
+def _intercept(gun, target, time_s, aim, branch, limits) -> Intercept:
+    if aim is None:
+        return Intercept(
+            time_s,
+            None,
+            None,
+            None,
+            f"the target has hit the ground at {target.ground_time_s:.1f} s",
+            0,
+        )
+    result = firing_solutions(gun, aim, bearing_limits_deg=limits, branch=branch)
+    return Intercept(time_s, aim, result.low, result.high, result.reason, result.mks_solves)
+
+
+def intercept(
+    gun: Launch,
+    target: KeplerTarget,
+    intercept_time_s: float,
+    *,
+    branch: str = "ascending",
+    bearing_limits_deg: tuple[float, float] | None = None,
+) -> Intercept:
+    """The firing solutions (fire time, elevation, bearing, time of flight by eq 3.32) whose
+    MKS projectile meets ``target`` at ``intercept_time_s`` on the trajectory's ``branch``:
+    :func:`firing_solutions` to the target's point then, turned back to the Earth-fixed frame,
+    with that time as the arrival time. A solution that would have to be fired before t = 0,
+    or a target already landed, is no solution, with the reason."""
+    gun = _check_gun(gun)
+    target = _check_kepler_target(target)
+    branch = check_choice(branch, "branch", BRANCHES)
+    time = _check_intercept_times(intercept_time_s, target)
+    if np.ndim(intercept_time_s) != 0:
+        raise TypeError("intercept_time_s must be one time (s); intercept_window takes many")
+    (aim,) = _aims(gun, target, time)
+    return _intercept(gun, target, float(time[0]), aim, branch, bearing_limits_deg)
+
+
+@dataclass(frozen=True)
+class InterceptWindow:
+    """The feasible intercepts over a target's flight: every intercept time's result, the
+    earliest and latest feasible intercept and the span of feasible fire times (s; NaN if no
+    intercept is feasible, then ``reason`` says why not at the first time)."""
+
+    intercepts: tuple[Intercept, ...]
+    earliest_intercept_s: float
+    latest_intercept_s: float
+    first_fire_s: float
+    last_fire_s: float
+    reason: str | None
+
+    @property
+    def intercept_times_s(self) -> np.ndarray:
+        return np.array([item.intercept_time_s for item in self.intercepts])
+
+    @property
+    def feasible(self) -> np.ndarray:
+        return np.array([bool(item.roots) for item in self.intercepts])
+
+    @property
+    def time_to_fire_s(self) -> float:
+        """The time available to fire: the span of the feasible fire times (s)."""
+        return self.last_fire_s - self.first_fire_s
+
+    @property
+    def mks_solves(self) -> int:
+        return sum(item.mks_solves for item in self.intercepts)
+
+
+def intercept_window(
+    gun: Launch,
+    target: KeplerTarget,
+    *,
+    times_s=None,
+    count: int = 50,
+    branch: str = "ascending",
+    bearing_limits_deg: tuple[float, float] | None = None,
+) -> InterceptWindow:
+    """:func:`intercept` at every time of ``times_s`` (s), or by default at ``count`` times
+    spread over the target's flight from its epoch (or t = 0, if later) until it falls back to
+    the ground (ends excluded): which are feasible, the earliest and latest feasible intercept
+    and the feasible fire times."""
+    gun = _check_gun(gun)
+    target = _check_kepler_target(target)
+    branch = check_choice(branch, "branch", BRANCHES)
+    if times_s is None:
+        count = int(check_range(real_number(count, "count"), "count", low=1))
+        end = target.ground_time_s
+        if not math.isfinite(end):
+            raise ValueError("the target never falls back to the ground: pass times_s")
+        times_s = np.linspace(max(target.epoch_s, 0.0), end, count + 2)[1:-1]
+    times = _check_intercept_times(times_s, target)
+    intercepts = tuple(
+        _intercept(gun, target, float(time), aim, branch, bearing_limits_deg)
+        for time, aim in zip(times, _aims(gun, target, times), strict=True)
+    )
+    feasible = [item for item in intercepts if item.roots]
+    fires = [
+        root.fire_time_s for item in feasible for root in item.roots if root.fire_time_s is not None
+    ]
+    if not feasible:
+        first = intercepts[0].reason if intercepts else "no intercept times"
+        nan = math.nan
+        return InterceptWindow(intercepts, nan, nan, nan, nan, f"no feasible intercept: {first}")
+    return InterceptWindow(
+        intercepts,
+        feasible[0].intercept_time_s,
+        feasible[-1].intercept_time_s,
+        min(fires),
+        max(fires),
+        None,
+    )
+
+
+# --- the 3DOF alone, and the Chapter 7 counts --------------------------------------------------
+def _drag_free_start(gun: Launch, target: TargetPoint, branch: str) -> np.ndarray | None:
+    """(elevation, bearing) (rad) of the lowest drag-free conic (eq 3.8, no rotation) from the
+    gun at its muzzle speed through the target's radius at its central angle on ``branch``:
+    with T = tan(elevation) and k = GM / (R V)^2, u(theta) = 1 / r_t is the quadratic
+    k (1 - cos) T^2 - (sin / R) T + k (1 - cos) + cos / R - 1 / r_t = 0. None if out of reach."""
+    central, bearing = great_circle(gun, target)
+    r0, rt = earth.RADIUS_M, earth.RADIUS_M + target.altitude_m
+    k = earth.GM_M3_S2 / (r0 * gun.speed_m_s) ** 2
+    a = k * (1 - math.cos(central))
+    b = -math.sin(central) / r0
+    c = a + math.cos(central) / r0 - 1 / rt
+    discriminant = b * b - 4 * a * c
+    if a <= 0 or discriminant < 0:
+        return None
+    for tangent in sorted((-b - s * math.sqrt(discriminant)) / (2 * a) for s in (1, -1)):
+        if tangent <= 0:
+            continue
+        # the conic's apogee angle: u' = 0 where tan(theta) = T / (R c3 - 1), c3 = k (1 + T^2)
+        apogee = math.atan2(tangent, r0 * k * (1 + tangent**2) - 1) % math.pi
+        if (central < apogee) == (branch == "ascending"):
+            return np.array([math.atan(tangent), bearing])
+    return None
+
+
+def shoot_3dof(
+    gun: Launch, target: TargetPoint, *, branch: str = "descending", rtol: float = 1e-9
+) -> Verification:
+    """The iterative 3DOF firing solution alone: shooting (elevation, bearing) with the 3DOF
+    from the drag-free conic's elevation at the great-circle bearing, not from the MKS. The
+    result's ``mks_miss_m`` and changes are those of that drag-free start; ``rhs_evaluations``
+    counts the 3DOF's equations of motion solved. ValueError if the conic cannot reach it."""
+    gun = _check_gun(gun)
+    target = _check_target(target)
+    branch = check_choice(branch, "branch", BRANCHES)
+    start = _drag_free_start(gun, target, branch)
+    if start is None:
+        raise ValueError(f"target: no drag-free conic reaches it on the {branch} branch")
+    shooting = _Shooting(gun, target, branch == "ascending", rtol)
+    # bounded steps: drag shortens the drag-free range several-fold, and hybr's default first
+    # step from so far off overshoots to the other root or stalls
+    start_miss, fit, final, miss = shooting.solve(start, step_bound=0.1)
+    elevation, bearing = math.degrees(fit.x[0]), math.degrees(fit.x[1]) % 360.0
+    start_deg = np.degrees(start)
+    return Verification(
+        mks_miss_m=start_miss,
+        elevation_deg=elevation,
+        bearing_deg=bearing,
+        elevation_change_deg=elevation - float(start_deg[0]),
+        bearing_change_deg=(bearing - float(start_deg[1]) + 180.0) % 360.0 - 180.0,
+        miss_m=miss,
+        time_of_flight_s=float(final.time_of_flight_s[0]),
+        flights=shooting.flights,
+        converged=bool(fit.success) or miss <= _LANDED_M,
+        message=str(fit.message),
+        rhs_evaluations=shooting.rhs_evaluations,
+    )
+
+
+#: Barbados's gun (Ch. 6: latitude 13 deg 4' 38" N, its longitude about 59.6 deg W), HP at its
+#: muzzle speed on the rotating Earth in the 3DOF's two-segment air.
+BARBADOS_HP = Launch(
+    HP,
+    HP.launch_speed_m_s,
+    45.0,
+    latitude_deg=math.degrees(BARBADOS.latitude_rad),
+    longitude_deg=-59.6,
+    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+)
+
+
+def destination(
+    gun: Launch, bearing_deg: float, distance_m: float, altitude_m: float = 0.0
+) -> TargetPoint:
+    """The point ``distance_m`` along the great circle leaving the gun at ``bearing_deg``."""
+    up, downrange, _ = launch_frame(gun.latitude_rad, 0.0, math.radians(bearing_deg))
+    angle = real_number(distance_m, "distance_m") / earth.RADIUS_M
+    point = np.cos(angle) * np.ravel(up) + np.sin(angle) * np.ravel(downrange)
+    latitude = math.degrees(math.asin(float(np.clip(point[2], -1.0, 1.0))))
+    longitude = (math.degrees(math.atan2(point[1], point[0])) + gun.longitude_deg + 180) % 360
+    return TargetPoint(latitude, longitude - 180, altitude_m)
+
+
+def barbados_case() -> tuple[Launch, TargetPoint]:
+    """Chapter 7's counting case: HP from Barbados at the point 150 km down the gun's bearing
+    (109 deg, Ch. 6) at sea level."""
+    gun = BARBADOS_HP
+    return gun, destination(gun, math.degrees(BARBADOS.gun_bearing_rad), 150e3)
+
+
+def raid(gun: Launch = BARBADOS_HP, count: int = 100) -> list[KeplerTarget]:
+    """``count`` re-entering ballistic targets: at t = 0 each is 250 km from the gun at 120 km
+    altitude, on bearings spread over 60-160 deg, diving at 3 km/s and 25 deg back toward a
+    point up to 30 km beside the gun (deterministic: the Chapter 7 count's raid)."""
+    count = int(check_range(real_number(count, "count"), "count", low=1))
+    targets = []
+    for i in range(count):
+        fraction = (i + 0.5) / count
+        up, downrange, right = (
+            np.ravel(v)
+            for v in launch_frame(gun.latitude_rad, 0.0, math.radians(60 + 100 * fraction))
+        )
+        angle = 250e3 / earth.RADIUS_M
+        position = (earth.RADIUS_M + 120e3) * (math.cos(angle) * up + math.sin(angle) * downrange)
+        local_up = position / np.linalg.norm(position)
+        home = -downrange + 0.12 * math.sin(7.0 * fraction * math.pi) * right  # beside the gun
+        inward = home - (home @ local_up) * local_up
+        inward /= np.linalg.norm(inward)
+        dive = math.radians(-25.0)
+        velocity = 3e3 * (math.cos(dive) * inward + math.sin(dive) * local_up)
+        targets.append(KeplerTarget(position, velocity, 0.0))
+    return targets
+
+
+def mks_solves_per_firing_solution(gun: Launch | None = None, target: TargetPoint | None = None):
+    """MKS trajectories that the refinement of one firing solution evaluates (its low root),
+    by default in :func:`barbados_case` (the bracketing grid, shared by both roots and
+    vectorised, adds about 170 more: FiringSolutions.mks_solves). Chapter 7 A: "dozens or
+    even hundreds"."""
+    gun, target = barbados_case() if gun is None or target is None else (gun, target)
+    low = firing_solutions(gun, target).low
+    if low is None:
+        raise ValueError("target: the case has no low-angle firing solution")
+    return low.mks_solves
+
+
+def eom_evaluations_per_3dof_firing_solution(
+    gun: Launch | None = None, target: TargetPoint | None = None, *, rtol: float = 1e-9
+) -> int:
+    """Right-hand-side evaluations of the 3DOF's equations of motion in the iterative 3DOF
+    firing solution (:func:`shoot_3dof` from the drag-free conic, every flight of the shooting
+    included) of :func:`barbados_case` by default. Chapter 7 A: "hundreds of thousands or
+    millions of numerical EOM solutions"."""
+    gun, target = barbados_case() if gun is None or target is None else (gun, target)
+    return shoot_3dof(gun, target, rtol=rtol).rhs_evaluations
+
+
+def raid_intercepts_per_3dof_intercept(
+    gun: Launch = BARBADOS_HP,
+    targets: list[KeplerTarget] | None = None,
+    *,
+    times: int = 50,
+    operations_per_rhs: float = 1.0,
+    operations_per_mks: float = 1.0,
+) -> float:
+    """log10 of the work of one iterative 3DOF intercept over that of every MKS intercept of a
+    raid (:func:`raid`'s 100 targets by default, each at ``times`` intercept times over its
+    flight): positive where the text's claim holds ("all possible intercepts ... in less time
+    than ... one intercept trajectory using an iterative 3DOF").
+
+    Counted: the 3DOF's right-hand-side evaluations of :func:`shoot_3dof` (ascending branch,
+    from the drag-free conic) to the first target's middle feasible intercept point, against
+    the MKS trajectories (grids and refinements) of every intercept of the raid, each count
+    weighted by its operations (``operations_per_rhs``, ``operations_per_mks``; 1 by default:
+    a ratio of counts. An MKS trajectory here costs far more than a right-hand side: its
+    crossing and its eq 3.32 time evaluate u about 150 times)."""
+    targets = raid(gun) if targets is None else targets
+    windows = [intercept_window(gun, target, count=times) for target in targets]
+    mks_work = sum(window.mks_solves for window in windows) * operations_per_mks
+    feasible = [item for item in windows[0].intercepts if item.roots]
+    if not feasible:
+        raise ValueError(f"targets: the first has no feasible intercept ({windows[0].reason})")
+    aim = feasible[len(feasible) // 2].aim
+    assert aim is not None  # a feasible intercept has its point
+    shot = shoot_3dof(gun, aim, branch="ascending")
+    if not shot.converged:  # a count of a failed solve would be no measure of the claim
+        raise RuntimeError(f"the iterative 3DOF intercept did not converge: {shot.message}")
+    return math.log10(shot.rhs_evaluations * operations_per_rhs / mks_work)
