@@ -8,6 +8,7 @@ import pytest
 from harp_analysis import gallery, paths, registry
 
 ENTRIES = registry.load_registry()
+EXTENSIONS = [entry for entry in ENTRIES if entry.extension]
 REPOSITORY_FIGURES = paths.COMMITTED_FIGURES_DIR
 DISSERTATION = paths.ROOT.parent / "shared" / "dissertation" / "000_5344a0ab06f4edea.txt"
 
@@ -19,14 +20,14 @@ def test_every_figure_and_table_is_registered():
         for n in range(1, count + 1)
     }
     expected.add("Table 4.1")
-    assert {entry.number for entry in ENTRIES} == expected
+    assert {entry.number for entry in ENTRIES if not entry.extension} == expected
 
 
 @pytest.mark.skipif(not DISSERTATION.exists(), reason="shared/dissertation not beside the repo")
 def test_registry_titles_are_the_captions():
     text = DISSERTATION.read_text()
     for entry in ENTRIES:
-        if entry.kind == "figure":
+        if entry.kind == "figure" and not entry.extension:
             first_words = " ".join(entry.title.split()[:4])
             assert re.search(
                 rf"^Figure {re.escape(entry.number)} {re.escape(first_words)}", text, re.M
@@ -35,7 +36,7 @@ def test_registry_titles_are_the_captions():
 
 @pytest.mark.parametrize(
     "entry",
-    [e for e in ENTRIES if e.status in ("reproduced", "deviates", "partial")],
+    [e for e in ENTRIES if e.status in registry.DRAWN],
     ids=lambda e: e.number,
 )
 def test_reproduced_figures_have_their_file_and_notebook(entry):
@@ -93,3 +94,68 @@ def test_statuses_agree_with_the_ledger():
     """ "reproduced" only when every ledger row about the figure reproduces; "deviates" only
     when one does not."""
     assert gallery.status_problems() == []
+
+
+# --- the project's own figures, beyond the dissertation -------------------------------------------
+def test_extensions_are_numbered_outside_the_dissertation():
+    assert EXTENSIONS, "the registry lists no extension"
+    for position, entry in enumerate(EXTENSIONS, start=1):
+        assert entry.number == f"X.{position}" and entry.label == f"Figure X.{position}"
+        assert entry.status == "extension" and entry.caption and entry.reason
+        assert registry.figure_file(entry.number).name == f"fig_x_{position}.png"
+    # the dissertation's figures come first, the extensions after them
+    flags = [entry.extension for entry in ENTRIES]
+    assert flags == sorted(flags)
+
+
+def test_gallery_lists_extensions_in_their_own_section(tmp_path):
+    text = gallery.render_gallery(tmp_path / "README.md").read_text()
+    dissertation, beyond = text.split("# Beyond the dissertation")
+    for entry in EXTENSIONS:
+        assert f"| {entry.label} |" not in dissertation
+        assert f"| {entry.label} | {entry.title} | data | drawn, extension |" in beyond
+        assert f"## {entry.label}: {entry.title}" in beyond and f"*{entry.caption}*" in beyond
+    assert "extension" not in dissertation.split("|")[0]  # not among the dissertation's counts
+
+
+_EXTENSION = (
+    '[[item]]\nnumber = "{number}"\nkind = "figure"\ntitle = "t"\nclass = "data"\n'
+    'notebook = "07_fire_control.ipynb"\nfile = "{file}"\nstatus = "{status}"\n'
+    'reason = "held by tests"\n{extra}'
+)
+
+
+@pytest.mark.parametrize(
+    "number, file, status, extra, message",
+    [
+        ("X.1", "fig_x_1.png", "reproduced", "extension = true\ncaption = 'c'\n",
+         "nothing in the dissertation to reproduce"),
+        ("7.1", "fig_7_1.png", "extension", "extension = true\ncaption = 'c'\n",
+         "numbered X.1"),
+        ("X.1", "fig_7_1.png", "extension", "extension = true\ncaption = 'c'\n",
+         "file is 'fig_x_1.png'"),
+        ("X.1", "fig_x_1.png", "extension", "extension = true\n", "needs its caption"),
+        ("X.1", "fig_x_1.png", "extension", "caption = 'c'\n", "extension = true entries only"),
+        ("X.1", "fig_x_1.png", "extension", "extension = 'yes'\ncaption = 'c'\n",
+         "true or false"),
+    ],
+)  # fmt: skip
+def test_malformed_extension_is_named(tmp_path, number, file, status, extra, message):
+    path = tmp_path / "figures.toml"
+    path.write_text(_EXTENSION.format(number=number, file=file, status=status, extra=extra))
+    with pytest.raises(ValueError, match=message):
+        registry.load_registry(path)
+
+
+def test_a_wellformed_extension_loads(tmp_path):
+    path = tmp_path / "figures.toml"
+    path.write_text(
+        _EXTENSION.format(
+            number="X.3",
+            file="fig_x_3.png",
+            status="extension",
+            extra="extension = true\ncaption = 'c'\n",
+        )
+    )
+    (entry,) = registry.load_registry(path)
+    assert entry.extension and entry.status == "extension" and entry.label == "Figure X.3"

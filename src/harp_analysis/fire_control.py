@@ -69,6 +69,9 @@ _GRID_MAX_DECAY = 8.0
 #: How far the refinement may turn the bearing from the great-circle one (rad): the Earth's
 #: rotation deflects the shot by far less.
 _BEARING_SPAN_RAD = math.radians(30.0)
+#: A refined root must put the MKS trajectory this close to the target (m); a solver stopped on
+#: a bound with a larger miss has found no root.
+_CONVERGED_MISS_M = 1.0
 #: Gauss-Legendre intervals and order of the time of flight (eq 3.32) to the target: converged
 #: to well under a microsecond, a fraction of a millimetre of the target's motion.
 _TIME_INTERVALS = 16
@@ -382,6 +385,11 @@ def _refine(problem: _Problem, start, bounds, limits, arrival_time_s):
     residual, solution, time = problem.residual(fit.x)
     if not np.all(np.isfinite(residual)):
         return None, "the refinement left the trajectories that reach the target's altitude"
+    if np.hypot(*residual) > _CONVERGED_MISS_M:
+        return None, (
+            f"the refinement stopped {np.hypot(*residual) / 1e3:.3g} km from the target, "
+            "on the bounds of its elevation bracket or bearing span: no root there"
+        )
     elevation_deg = math.degrees(fit.x[0])
     bearing_deg = math.degrees(fit.x[1]) % 360.0
     if limits is not None and not _within(bearing_deg, limits):
@@ -467,13 +475,11 @@ def firing_solutions(
             )
             continue
         cell = int(cells[0])
-        # start where the bracket interpolates to zero; stay within a cell of it, on its side
-        # of the maximum range so that the two roots cannot merge
+        # start where the bracket interpolates to zero; stay on its side of the maximum range
+        # (the grid's peak) so that the two roots cannot merge
         a, b = excess[cell], excess[cell + 1]
         start = elevation[cell] + (elevation[cell + 1] - elevation[cell]) * a / (a - b)
-        lower = max(elevation[max(cell - 1, 0)], span[0])
-        upper = min(elevation[min(cell + 2, elevation.size - 1)], span[1])
-        bounds = ([lower, bearing_bounds[0]], [upper, bearing_bounds[1]])
+        bounds = ([span[0], bearing_bounds[0]], [span[1], bearing_bounds[1]])
         roots[name], why = _refine(problem, [start, bearing], bounds, limits, target.arrival_time_s)
         if why is not None:
             reasons.append(f"no {name}-angle root: {why}")

@@ -3,6 +3,9 @@ it, and the check that the registry's statuses agree with the ledger.
 
 A figure is "reproduced" only when every ledger row about it reproduces; a drawn figure with a
 row that is close or does not reproduce is "drawn, deviates", and the gallery links the rows.
+The project's own figures (registry ``extension = true``, numbered X.1, X.2, ...) follow in a
+section of their own, "Beyond the dissertation": there is nothing in the text to reproduce, so
+they are "drawn, extension", held by the tests their reason names.
 """
 
 from __future__ import annotations
@@ -11,7 +14,7 @@ from pathlib import Path
 
 from . import paths
 from .ledger import ClaimResult, claims_by_figure
-from .registry import STATUSES, RegistryEntry, load_registry
+from .registry import DRAWN, STATUSES, RegistryEntry, load_registry
 
 __all__ = ["render_gallery", "status_problems"]
 
@@ -21,7 +24,12 @@ _SHOWN = {
     "partial": "partial",
     "pending": "pending",
     "not reproducible": "not reproducible",
+    "extension": "drawn, extension",
 }
+_TABLE_HEAD = [
+    "| number | title | class | status | notebook | reason |",
+    "|---|---|---|---|---|---|",
+]
 
 
 def _rows(results: list[ClaimResult], only_deviating: bool = False) -> str:
@@ -61,8 +69,14 @@ def render_gallery(target: Path | None = None) -> Path:
     """Write the gallery: every entry with its status, reason and ledger rows, then each drawn
     figure with its caption (PNG shown, vector PDF linked)."""
     target = Path(target) if target else paths.FIGURES_DIR / "README.md"
-    entries, tied = load_registry(), claims_by_figure()
-    counts = {status: sum(e.status == status for e in entries) for status in STATUSES}
+    tied = claims_by_figure()
+    entries = [e for e in load_registry() if not e.extension]
+    extensions = [e for e in load_registry() if e.extension]
+    counts = {
+        status: sum(e.status == status for e in entries)
+        for status in STATUSES
+        if status != "extension"  # the dissertation's figures are never extensions
+    }
     lines = [
         "# Figures of Stutz (2013), regenerated",
         "",
@@ -73,13 +87,34 @@ def render_gallery(target: Path | None = None) -> Path:
         ", ".join(f"{n} {_SHOWN[status]}" for status, n in counts.items())
         + f" ({len(entries)} in all).",
         "",
-        "| number | title | class | status | notebook | reason |",
-        "|---|---|---|---|---|---|",
+        *_TABLE_HEAD,
         *(_line(e, tied.get(e.number, [])) for e in entries),
         "",
     ]
+    lines += _drawn(entries, tied)
+    if extensions:
+        lines += [
+            "# Beyond the dissertation",
+            "",
+            "The project's own figures, numbered outside the dissertation's numbering: what the "
+            "text's methods make possible but the text does not draw. Nothing in the text to "
+            "reproduce; each is held by the tests its reason names "
+            f"({len(extensions)} in all).",
+            "",
+            *_TABLE_HEAD,
+            *(_line(e, tied.get(e.number, [])) for e in extensions),
+            "",
+            *_drawn(extensions, tied),
+        ]
+    text = "\n".join(lines)
+    return paths.write_atomically(target, lambda path: path.write_text(text))
+
+
+def _drawn(entries: list[RegistryEntry], tied: dict[str, list[ClaimResult]]) -> list[str]:
+    """A section per drawn figure of ``entries``: its caption, status and image."""
+    lines: list[str] = []
     for e in entries:
-        if e.status not in ("reproduced", "deviates", "partial"):
+        if e.status not in DRAWN:
             continue
         if e.file.endswith(".png"):
             shown = f"![{e.label}]({e.file})\n\nVector: [{e.file[:-4]}.pdf]({e.file[:-4]}.pdf)"
@@ -97,5 +132,4 @@ def render_gallery(target: Path | None = None) -> Path:
             shown,
             "",
         ]
-    text = "\n".join(lines)
-    return paths.write_atomically(target, lambda path: path.write_text(text))
+    return lines

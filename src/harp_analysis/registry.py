@@ -9,7 +9,11 @@ loudly, naming the entry):
 - ``status``: where the project stands (``reproduced``: drawn, and every ledger row about it
   reproduces; ``deviates``: drawn, but a ledger row about it does not; ``partial``,
   ``pending``, ``not reproducible``); every status but ``reproduced`` needs a ``reason``;
-- ``caption`` (optional): one line naming the figure's case and model variant.
+- ``caption`` (optional): one line naming the figure's case and model variant;
+- ``extension`` (optional, default false): the project's own figure, beyond the dissertation,
+  numbered outside its numbering (``X.1``, ``X.2``, ... written ``fig_x_1.png``). There is
+  nothing in the text to reproduce, so its status is ``extension`` (drawn; its ``reason`` names
+  the tests that hold it) or ``pending``, never another, and it needs its caption.
 """
 
 from __future__ import annotations
@@ -29,11 +33,17 @@ __all__ = [
     "figure_file",
     "CLASSES",
     "STATUSES",
+    "DRAWN",
+    "EXTENSION_STATUSES",
     "INDEX_FILES",
 ]
 
 CLASSES = ("data", "schematic", "partial", "not reproducible")
-STATUSES = ("reproduced", "deviates", "partial", "pending", "not reproducible")
+STATUSES = ("reproduced", "deviates", "partial", "pending", "not reproducible", "extension")
+#: The statuses of a drawn figure: it has its notebook and file.
+DRAWN = ("reproduced", "deviates", "partial", "extension")
+#: The statuses an extension (the project's own figure) may have.
+EXTENSION_STATUSES = ("extension", "pending")
 #: Files in figures/ that are indexes, not figures.
 INDEX_FILES = ("README.md", "CLAIMS.md")
 _FIELDS = ("number", "kind", "title", "class", "notebook", "file", "status", "reason")
@@ -50,6 +60,7 @@ class RegistryEntry:
     status: str
     reason: str
     caption: str = ""
+    extension: bool = False
 
     @property
     def label(self) -> str:
@@ -59,7 +70,7 @@ class RegistryEntry:
 def _entry(raw: dict, position: int, source: Path) -> RegistryEntry:
     where = f"{source.name} entry {position} ({raw.get('number', '?')})"
     missing = [name for name in _FIELDS if name not in raw]
-    unknown = set(raw) - {*_FIELDS, "caption"}
+    unknown = set(raw) - {*_FIELDS, "caption", "extension"}
     if unknown:
         raise ValueError(f"{where}: unknown field(s) {', '.join(sorted(unknown))}")
     if missing:
@@ -70,9 +81,15 @@ def _entry(raw: dict, position: int, source: Path) -> RegistryEntry:
         raise ValueError(f"{where}: status {raw['status']!r} is not one of {STATUSES}")
     if raw["status"] != "reproduced" and not raw["reason"].strip():
         raise ValueError(f"{where}: status {raw['status']!r} needs a reason")
-    drawn = ("reproduced", "deviates", "partial")
-    if raw["status"] in drawn and not (raw["notebook"] and raw["file"]):
+    if raw["status"] in DRAWN and not (raw["notebook"] and raw["file"]):
         raise ValueError(f"{where}: a {raw['status']} entry needs its notebook and file")
+    extension = raw.get("extension", False)
+    if not isinstance(extension, bool):
+        raise ValueError(f"{where}: extension must be true or false; got {extension!r}")
+    if extension:
+        _check_extension(raw, where)
+    elif raw["status"] == "extension":
+        raise ValueError(f"{where}: status 'extension' is for extension = true entries only")
     return RegistryEntry(
         raw["number"],
         raw["kind"],
@@ -83,7 +100,26 @@ def _entry(raw: dict, position: int, source: Path) -> RegistryEntry:
         raw["status"],
         raw["reason"],
         raw.get("caption", ""),
+        extension,
     )
+
+
+def _check_extension(raw: dict, where: str) -> None:
+    """An extension: numbered X.n, its file fig_x_n, status extension or pending, a caption."""
+    number = raw["number"]
+    prefix, _, index = number.partition(".")
+    if prefix != "X" or not index.isdigit() or index.startswith("0"):
+        raise ValueError(f"{where}: an extension is numbered X.1, X.2, ...; got {number!r}")
+    if raw["status"] not in EXTENSION_STATUSES:
+        raise ValueError(
+            f"{where}: an extension has nothing in the dissertation to reproduce; its status "
+            f"is one of {EXTENSION_STATUSES}, not {raw['status']!r}"
+        )
+    expected = f"fig_x_{index}.png"
+    if raw["file"] and raw["file"] != expected:
+        raise ValueError(f"{where}: extension {number}'s file is {expected!r}; got {raw['file']!r}")
+    if raw["status"] == "extension" and not raw.get("caption", "").strip():
+        raise ValueError(f"{where}: a drawn extension needs its caption")
 
 
 def load_toml_rows(path: Path, table: str, build, key: str) -> tuple:

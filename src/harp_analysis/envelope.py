@@ -1,0 +1,188 @@
+"""Envelope maps (issue 16 item 4): how far the MKS firing solution misses when the 3DOF flies it.
+
+For each intercept point of a map (a downrange distance along a bearing from the gun, along
+the great circle, times an altitude above the spherical Earth; the point fixed to the Earth,
+met on the trajectory's descending branch) the ECI MKS firing solution
+(:func:`.fire_control.firing_solutions`) is flown once by the 3DOF on the rotating Earth, to
+the target's altitude, and its miss measured: the straight-line distance (m) from the 3DOF's
+Earth-fixed end point to the target's (:meth:`.fire_control.TargetPoint.earth_fixed_m`). It
+is the first step of :func:`.fire_control.verify_with_3dof` without its shooting refinement,
+which would be far too slow for a map. Points with no firing solution keep the reason.
+
+The points run through :func:`.sweeps.sweep`: in this process, or on a Dask cluster.
+
+SI inside (m, s, rad); degrees only in the arguments and columns named ``_deg``.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from functools import partial
+
+import numpy as np
+import pandas as pd
+
+from . import earth, threedof
+from .fire_control import FiringSolution, TargetPoint, firing_solutions
+from .launch import Launch
+from .sweeps import sweep
+from .trajectory import TruncatedFlightWarning, launch_frame
+from .validation import check_choice, check_range, finite_array, real_number
+
+__all__ = ["ROOTS", "MKS_CONVERGED_M", "MAP_COLUMNS", "destination", "three_dof_miss", "miss_map"]
+
+ROOTS = ("low", "high")
+#: A firing solution whose own MKS residual is larger (m) is no solution: fire_control's
+#: refinement stopped on a bound of its bracket (seen on long westward shots) without landing.
+MKS_CONVERGED_M = 1.0
+#: The columns of :func:`miss_map`, one row per intercept point.
+MAP_COLUMNS = (
+    "map_bearing_deg",  # the bearing from the gun along which the points lie
+    "root",  # "low" or "high"
+    "downrange_m",  # great-circle distance from the gun to the point's foot, on the surface
+    "altitude_m",
+    "latitude_deg",  # of the point
+    "longitude_deg",
+    "elevation_deg",  # the MKS firing solution (NaN where there is none)
+    "bearing_deg",
+    "time_of_flight_s",  # of the MKS to the point
+    "beta",  # of the ECI launch (validity: below 0.25)
+    "leaves_atmosphere",
+    "mks_miss_m",  # the MKS solution's own residual at the point (fire_control's miss_m)
+    "miss_3dof_m",  # the 3DOF flown at the MKS solution: its miss (NaN where it cannot)
+    "reason",  # why there is no 3DOF miss: no firing solution, or the 3DOF never got there
+)
+
+
+def destination(
+    gun: Launch, bearing_deg: float, downrange_m: float, altitude_m: float = 0.0
+) -> TargetPoint:
+    """The point ``downrange_m`` along the surface from ``gun`` (its latitude and longitude)
+    on the great circle leaving it at ``bearing_deg`` from true north, ``altitude_m`` up."""
+    bearing = math.radians(real_number(bearing_deg, "bearing_deg"))
+    distance = check_range(real_number(downrange_m, "downrange_m"), "downrange_m", low=0.0)
+    if distance > math.pi * earth.RADIUS_M:
+        raise ValueError(
+            f"downrange_m = {distance:g} m goes past the antipode "
+            f"({math.pi * earth.RADIUS_M:.0f} m along the surface)"
+        )
+    angle = distance / earth.RADIUS_M
+    up, along, _ = launch_frame(gun.latitude_rad, math.radians(gun.longitude_deg), bearing)
+    point = math.cos(angle) * np.ravel(up) + math.sin(angle) * np.ravel(along)
+    latitude = math.degrees(math.asin(float(np.clip(point[2], -1.0, 1.0))))
+    longitude = (math.degrees(math.atan2(point[1], point[0])) + 180.0) % 360.0 - 180.0
+    return TargetPoint(latitude, longitude, altitude_m)
+
+
+def three_dof_miss(
+    gun: Launch, target: TargetPoint, solution: FiringSolution, *, rtol: float = 1e-9
+) -> float:
+    """The 3DOF (the gun's atmosphere, drag law and Earth rotation) fired once at the firing
+    ``solution``: the distance (m) from where it crosses the target's altitude on the
+    solution's branch to the target; NaN if it never gets there (within the 3DOF's time)."""
+    laid = gun.but(elevation_deg=solution.elevation_deg, bearing_deg=solution.bearing_deg)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TruncatedFlightWarning)  # reported as NaN below
+        flight = threedof.fly_3dof(
+            laid,
+            rtol=rtol,
+            end_altitude_m=target.altitude_m,
+            rising=solution.branch == "ascending",
+        )
+    if not flight.impact[0]:
+        return math.nan
+    # the 3DOF's Earth-fixed frame has its x axis toward longitude 0
+    return float(np.linalg.norm(flight.end_position_m[:, 0] - target.earth_fixed_m()))
+
+
+def _point(
+    point: tuple[float, float], gun: Launch, bearing_deg: float, roots: tuple[str, ...], rtol: float
+) -> list[dict]:
+    """The rows of the point ``(downrange_m, altitude_m)``, one per root of ``roots``: its
+    firing solution and the 3DOF's miss there, or why there is none."""
+    downrange, altitude = point
+    target = destination(gun, bearing_deg, downrange, altitude)
+    solutions = firing_solutions(gun, target)
+    rows = []
+    for root in roots:
+        row: dict[str, object] = dict.fromkeys(MAP_COLUMNS, math.nan)
+        row.update(
+            map_bearing_deg=bearing_deg,
+            root=root,
+            downrange_m=downrange,
+            altitude_m=altitude,
+            latitude_deg=target.latitude_deg,
+            longitude_deg=target.longitude_deg,
+            leaves_atmosphere=None,
+            reason=None,
+        )
+        rows.append(row)
+        solution = solutions.low if root == "low" else solutions.high
+        if solution is None:
+            # the reason names each missing root; keep this root's part
+            parts = [p for p in (solutions.reason or "").split("; ") if f"no {root}-angle" in p]
+            row["reason"] = parts[0] if parts else solutions.reason
+            continue
+        row.update(
+            elevation_deg=solution.elevation_deg,
+            bearing_deg=solution.bearing_deg,
+            time_of_flight_s=solution.time_of_flight_s,
+            beta=solution.beta,
+            leaves_atmosphere=solution.leaves_atmosphere,
+            mks_miss_m=solution.miss_m,
+        )
+        if solution.miss_m > MKS_CONVERGED_M:
+            row["reason"] = (
+                f"no {root}-angle root: the MKS refinement stopped "
+                f"{solution.miss_m / 1e3:.1f} km from the target"
+            )
+            continue
+        miss = three_dof_miss(gun, target, solution, rtol=rtol)
+        row["miss_3dof_m"] = miss
+        if not math.isfinite(miss):
+            row["reason"] = "the 3DOF fired at the MKS solution never reaches the target's altitude"
+    return rows
+
+
+def miss_map(
+    gun: Launch,
+    bearing_deg: float,
+    ranges_m,
+    altitudes_m,
+    *,
+    root: str = "low",
+    rtol: float = 1e-9,
+    client=None,
+    progress: bool = True,
+) -> pd.DataFrame:
+    """The MKS firing solution's 3DOF miss over a map of intercept points: every downrange
+    distance of ``ranges_m`` (m, along ``bearing_deg`` from ``gun``) at every altitude of
+    ``altitudes_m`` (m), met on the descending branch by the ``root`` ("low", "high" or
+    "both") solution. A tidy table, one row per point and root (:data:`MAP_COLUMNS`), ranges
+    varying fastest; ``attrs`` keep the gun, bearing and root. ``client`` and ``progress`` go
+    to :func:`.sweeps.sweep`."""
+    if not isinstance(gun, Launch):
+        raise TypeError(f"gun must be a harp_analysis.launch.Launch; got {type(gun).__name__}")
+    root = check_choice(root, "root", (*ROOTS, "both"))
+    roots = ROOTS if root == "both" else (root,)
+    bearing_deg = check_range(
+        real_number(bearing_deg, "bearing_deg"), "bearing_deg", low=0.0, high=360.0, unit="deg"
+    )
+    ranges = np.ravel(finite_array(ranges_m, "ranges_m"))
+    altitudes = np.ravel(finite_array(altitudes_m, "altitudes_m"))
+    if ranges.size == 0 or np.any(ranges <= 0):
+        raise ValueError("ranges_m must be one or more downrange distances > 0 (m)")
+    if altitudes.size == 0 or np.any(altitudes < 0):
+        raise ValueError("altitudes_m must be one or more altitudes >= 0 (m)")
+    points = [(float(x), float(h)) for h in altitudes for x in ranges]
+    rows = sweep(
+        partial(_point, gun=gun, bearing_deg=bearing_deg, roots=roots, rtol=rtol),
+        points,
+        client=client,
+        progress=progress,
+        description=f"miss map, bearing {bearing_deg:g} deg",
+    )
+    frame = pd.DataFrame([row for point in rows for row in point], columns=list(MAP_COLUMNS))
+    frame.attrs.update(gun=gun, bearing_deg=bearing_deg, root=root, rtol=rtol)
+    return frame

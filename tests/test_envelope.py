@@ -1,0 +1,159 @@
+"""Envelope maps: the destination against the great-circle inverse, and each map point's miss
+against a 3DOF flight fired directly at fire_control's MKS solution."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from harp_analysis import earth, envelope, fire_control, threedof
+from harp_analysis.fire_control import firing_solutions, great_circle
+from harp_analysis.launch import Launch
+from harp_analysis.projectiles import HP
+from harp_analysis.sites import BARBADOS, YUMA
+
+GUN = Launch(
+    HP,
+    HP.launch_speed_m_s,
+    45.0,
+    latitude_deg=math.degrees(BARBADOS.latitude_rad),
+    longitude_deg=-59.6,
+    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+)
+
+
+SITES = [
+    (math.degrees(BARBADOS.latitude_rad), -59.6),
+    (math.degrees(YUMA.latitude_rad), -114.4),
+    (-40.0, 179.5),  # across the date line
+    (0.0, 0.0),
+    (75.0, 20.0),
+]
+
+
+@pytest.mark.parametrize("latitude_deg, longitude_deg", SITES)
+@pytest.mark.parametrize("bearing_deg", [0.0, 37.0, 90.0, 163.0, 270.0, 329.0])
+@pytest.mark.parametrize("downrange_m", [1e3, 250e3, 3000e3])
+def test_destination_inverts_the_great_circle(
+    latitude_deg, longitude_deg, bearing_deg, downrange_m
+):
+    gun = GUN.but(latitude_deg=latitude_deg, longitude_deg=longitude_deg)
+    target = envelope.destination(gun, bearing_deg, downrange_m, 12e3)
+    angle, bearing = great_circle(gun, target)
+    assert angle * earth.RADIUS_M == pytest.approx(downrange_m, rel=1e-9)
+    turn = (math.degrees(bearing) - bearing_deg + 180.0) % 360.0 - 180.0
+    assert abs(turn) < 1e-7
+    assert target.altitude_m == 12e3 and -180.0 <= target.longitude_deg < 180.0
+
+
+def test_destination_at_no_distance_is_the_gun_and_refuses_the_far_side():
+    target = envelope.destination(GUN, 123.0, 0.0)
+    assert target.latitude_deg == pytest.approx(GUN.latitude_deg, abs=1e-12)
+    assert target.longitude_deg == pytest.approx(GUN.longitude_deg, abs=1e-12)
+    with pytest.raises(ValueError, match="antipode"):
+        envelope.destination(GUN, 90.0, 2.1e7)
+    with pytest.raises(ValueError, match="downrange_m"):
+        envelope.destination(GUN, 90.0, -1.0)
+
+
+def _direct_miss(gun, target, solution):
+    """The 3DOF fired straight from the engine at the solution: its Earth-fixed end point
+    where it falls through the target's altitude, against the target's position."""
+    flight = threedof.fly_3dof(
+        gun.but(elevation_deg=solution.elevation_deg, bearing_deg=solution.bearing_deg),
+        end_altitude_m=target.altitude_m,
+    )
+    assert flight.impact[0]
+    return float(np.linalg.norm(flight.end_position_m[:, 0] - target.earth_fixed_m()))
+
+
+class FakeClient:
+    """Dask's client as the sweep uses it (map, then gather), recording the calls."""
+
+    def __init__(self):
+        self.calls = []
+
+    def map(self, function, items):
+        self.calls.append(("map", len(items)))
+        return [(function, item) for item in items]
+
+    def gather(self, futures):
+        self.calls.append(("gather", len(futures)))
+        return [function(item) for function, item in futures]
+
+
+@pytest.fixture(scope="module")
+def east_map():
+    return envelope.miss_map(GUN, 90.0, [60e3, 180e3, 500e3], [0.0, 40e3], root="both")
+
+
+def test_map_is_tidy_one_row_per_point_and_root(east_map):
+    assert list(east_map.columns) == list(envelope.MAP_COLUMNS)
+    assert len(east_map) == 3 * 2 * 2
+    assert set(east_map.root) == {"low", "high"}
+    assert east_map.attrs["bearing_deg"] == 90.0 and east_map.attrs["root"] == "both"
+    # every row has a miss or a reason, never both missing
+    has_miss = np.isfinite(east_map.miss_3dof_m)
+    assert (has_miss ^ east_map.reason.notna()).all()
+
+
+def test_map_miss_is_the_3dof_fired_at_the_mks_solution(east_map):
+    solved = east_map[np.isfinite(east_map.miss_3dof_m)]
+    assert len(solved) >= 4
+    for row in solved.itertuples():
+        target = envelope.destination(GUN, 90.0, row.downrange_m, row.altitude_m)
+        solutions = firing_solutions(GUN, target)
+        solution = solutions.low if row.root == "low" else solutions.high
+        assert row.elevation_deg == pytest.approx(solution.elevation_deg, abs=1e-9)
+        assert row.miss_3dof_m == pytest.approx(_direct_miss(GUN, target, solution), rel=1e-9)
+    low = solved[solved.root == "low"].set_index(["downrange_m", "altitude_m"])
+    high = solved[solved.root == "high"].set_index(["downrange_m", "altitude_m"])
+    both = low.index.intersection(high.index)
+    assert len(both) and (low.loc[both].elevation_deg < high.loc[both].elevation_deg).all()
+
+
+def test_map_miss_agrees_with_the_verification(east_map):
+    """fire_control.verify_with_3dof measures the same flight's miss at the MKS solution (its
+    east and north components); the straight-line distance differs by the vertical part only."""
+    row = east_map[(east_map.root == "low") & np.isfinite(east_map.miss_3dof_m)].iloc[0]
+    target = envelope.destination(GUN, 90.0, row.downrange_m, row.altitude_m)
+    verification = fire_control.verify_with_3dof(GUN, target, firing_solutions(GUN, target).low)
+    assert row.miss_3dof_m == pytest.approx(verification.mks_miss_m, abs=1.0)
+
+
+def test_unreachable_points_keep_their_reason(east_map):
+    far = east_map[east_map.downrange_m == 500e3]
+    assert far.miss_3dof_m.isna().all() and far.elevation_deg.isna().all()
+    assert far.reason.str.contains("beyond the maximum range").all()
+
+
+def test_an_unconverged_mks_solution_is_no_solution(monkeypatch):
+    def stopped_short(gun, target):
+        solutions = firing_solutions(gun, target)
+        return dataclasses.replace(solutions, low=dataclasses.replace(solutions.low, miss_m=5e3))
+
+    monkeypatch.setattr(envelope, "firing_solutions", stopped_short)
+    frame = envelope.miss_map(GUN, 90.0, [180e3], [0.0], progress=False)
+    assert math.isnan(frame.miss_3dof_m[0])
+    assert "refinement stopped 5.0 km from the target" in frame.reason[0]
+
+
+def test_map_runs_on_a_client_with_the_same_result(east_map):
+    client = FakeClient()
+    frame = envelope.miss_map(GUN, 90.0, [60e3, 180e3, 500e3], [0.0, 40e3], root="both",
+                              client=client)  # fmt: skip
+    assert client.calls == [("map", 6), ("gather", 6)]
+    assert frame.drop(columns="reason").equals(east_map.drop(columns="reason"))
+    assert list(frame.reason.fillna("")) == list(east_map.reason.fillna(""))
+
+
+def test_bad_map_input_is_named():
+    with pytest.raises(ValueError, match="root"):
+        envelope.miss_map(GUN, 90.0, [1e5], [0.0], root="middle")
+    with pytest.raises(ValueError, match="ranges_m"):
+        envelope.miss_map(GUN, 90.0, [0.0], [0.0])
+    with pytest.raises(ValueError, match="altitudes_m"):
+        envelope.miss_map(GUN, 90.0, [1e5], [-5.0])
+    with pytest.raises(TypeError, match="gun must be"):
+        envelope.miss_map("gun", 90.0, [1e5], [0.0])
