@@ -26,6 +26,7 @@ import sys
 import threading
 from bisect import bisect_right
 from collections.abc import Callable
+from functools import cache
 from pathlib import Path
 from typing import Any, TypeVar
 
@@ -42,9 +43,21 @@ F = TypeVar("F", bound=Callable[..., Any])
 _PACKAGE = Path(__file__).parent
 
 
-def _imported(source: Path) -> set[Path]:
+def _imported(source: Path) -> frozenset[Path]:
     """The package's source files that ``source`` imports (``from . import x``, ``from .x
     import y``, ``import harp_analysis.x``), constants included: numba bakes them in."""
+    return _imported_as_of(source, *_stamp(source))
+
+
+def _stamp(source: Path) -> tuple[int, int]:
+    status = source.stat()
+    return status.st_mtime_ns, status.st_size
+
+
+@cache
+def _imported_as_of(source: Path, mtime_ns: int, size: int) -> frozenset[Path]:
+    """:func:`_imported` of ``source`` as it was at that modification time and size (a file
+    is parsed once per version, not once per compiled function)."""
     found: set[Path] = set()
     for node in ast.walk(ast.parse(source.read_text())):
         if isinstance(node, ast.ImportFrom):
@@ -62,7 +75,7 @@ def _imported(source: Path) -> set[Path]:
             for alias in node.names:
                 if alias.name.startswith(f"{__package__}."):
                     found.add(_PACKAGE.joinpath(*alias.name.split(".")[1:]).with_suffix(".py"))
-    return found
+    return frozenset(found)
 
 
 def _sources(module_name: str) -> list[Path]:
@@ -82,13 +95,21 @@ def cache_folder(module_name: str) -> Path:
     else the user's cache folder, in a folder named by a digest of every source file of the
     package that the module reaches, as they are now (an edit to any of them, or a reload after
     one, compiles afresh)."""
-    digest = hashlib.sha256()
-    for source in _sources(module_name):
-        digest.update(source.name.encode() + source.read_bytes())
+    sources = tuple(_sources(module_name))
+    digest = _digest(sources, tuple(_stamp(source) for source in sources))
     root = os.environ.get("NUMBA_CACHE_DIR") or Path(
         os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
     )
-    return Path(root) / "harp-analysis" / digest.hexdigest()[:16]
+    return Path(root) / "harp-analysis" / digest
+
+
+@cache
+def _digest(sources: tuple[Path, ...], stamps: tuple) -> str:
+    """The digest of ``sources`` at these modification times and sizes (read once each)."""
+    digest = hashlib.sha256()
+    for source in sources:
+        digest.update(source.name.encode() + source.read_bytes())
+    return digest.hexdigest()[:16]
 
 
 _CACHE_DIR_LOCK = threading.Lock()  # numba reads its global CACHE_DIR where caching starts
