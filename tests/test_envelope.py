@@ -9,18 +9,9 @@ import pytest
 
 from harp_analysis import earth, envelope, fire_control, threedof
 from harp_analysis.fire_control import firing_solutions, great_circle
-from harp_analysis.launch import Launch
-from harp_analysis.projectiles import HP
 from harp_analysis.sites import BARBADOS, YUMA
 
-GUN = Launch(
-    HP,
-    HP.launch_speed_m_s,
-    45.0,
-    latitude_deg=math.degrees(BARBADOS.latitude_rad),
-    longitude_deg=-59.6,
-    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
-)
+GUN = fire_control.BARBADOS_HP
 
 
 SITES = [

@@ -539,6 +539,25 @@ class _Shooting:
             miss = math.inf
         return first, fit, final, miss
 
+    def verification(self, start, **options) -> Verification:
+        """:meth:`solve` from ``start`` (elevation, bearing; rad), reported against it."""
+        start_miss, fit, final, miss = self.solve(start, **options)
+        elevation, bearing = math.degrees(fit.x[0]), math.degrees(fit.x[1]) % 360.0
+        start_elevation, start_bearing = np.degrees(start)
+        return Verification(
+            mks_miss_m=start_miss,
+            elevation_deg=elevation,
+            bearing_deg=bearing,
+            elevation_change_deg=elevation - float(start_elevation),
+            bearing_change_deg=(bearing - float(start_bearing) + 180.0) % 360.0 - 180.0,
+            miss_m=miss,
+            time_of_flight_s=float(final.time_of_flight_s[0]),
+            flights=self.flights,
+            converged=bool(fit.success) or miss <= _LANDED_M,
+            message=str(fit.message),
+            rhs_evaluations=self.rhs_evaluations,
+        )
+
 
 def verify_with_3dof(
     gun: Launch, target: TargetPoint, solution: FiringSolution, *, rtol: float = 1e-9
@@ -553,21 +572,7 @@ def verify_with_3dof(
         raise TypeError(f"solution must be a FiringSolution; got {type(solution).__name__}")
     shooting = _Shooting(gun, target, solution.branch == "ascending", rtol)
     start = np.radians([solution.elevation_deg, solution.bearing_deg])
-    mks_miss, fit, final, miss = shooting.solve(start)
-    elevation, bearing = math.degrees(fit.x[0]), math.degrees(fit.x[1]) % 360.0
-    return Verification(
-        mks_miss_m=mks_miss,
-        elevation_deg=elevation,
-        bearing_deg=bearing,
-        elevation_change_deg=elevation - solution.elevation_deg,
-        bearing_change_deg=(bearing - solution.bearing_deg + 180.0) % 360.0 - 180.0,
-        miss_m=miss,
-        time_of_flight_s=float(final.time_of_flight_s[0]),
-        flights=shooting.flights,
-        converged=bool(fit.success) or miss <= _LANDED_M,
-        message=str(fit.message),
-        rhs_evaluations=shooting.rhs_evaluations,
-    )
+    return shooting.verification(start)
 
 
 # --- part 2: intercepts of a ballistic target (Chapter 7 A) -----------------------------------
@@ -882,22 +887,7 @@ def shoot_3dof(
     shooting = _Shooting(gun, target, branch == "ascending", rtol)
     # bounded steps: drag shortens the drag-free range several-fold, and hybr's default first
     # step from so far off overshoots to the other root or stalls
-    start_miss, fit, final, miss = shooting.solve(start, step_bound=0.1)
-    elevation, bearing = math.degrees(fit.x[0]), math.degrees(fit.x[1]) % 360.0
-    start_deg = np.degrees(start)
-    return Verification(
-        mks_miss_m=start_miss,
-        elevation_deg=elevation,
-        bearing_deg=bearing,
-        elevation_change_deg=elevation - float(start_deg[0]),
-        bearing_change_deg=(bearing - float(start_deg[1]) + 180.0) % 360.0 - 180.0,
-        miss_m=miss,
-        time_of_flight_s=float(final.time_of_flight_s[0]),
-        flights=shooting.flights,
-        converged=bool(fit.success) or miss <= _LANDED_M,
-        message=str(fit.message),
-        rhs_evaluations=shooting.rhs_evaluations,
-    )
+    return shooting.verification(start, step_bound=0.1)
 
 
 #: Barbados's gun (Ch. 6: latitude 13 deg 4' 38" N, its longitude about 59.6 deg W), HP at its
