@@ -387,8 +387,11 @@ def test_warm_up_compiles_the_kernels():
 
 def test_the_constants_are_read_only_views():
     """Writing to a constant would not change the solution (its table feeds the kernels)."""
-    solution = mks.for_launch(baseline_chapter_4(45.0))
+    solution = mks.for_launch([baseline_chapter_4(45.0), baseline_chapter_4(60.0)])
     with pytest.raises(ValueError, match="read-only"):
         solution.c1[0, 0] = 0.0
-    angle = solution.apogee_angle
-    assert angle == solution.apogee_angle
+    first = solution.apogee_angle.copy()
+    solution.apogee_angle[0] = 0.0  # a caller's copy: the solution keeps its own
+    assert np.array_equal(solution.apogee_angle, first)
+    with pytest.raises(ValueError, match="read-only"):
+        solution.impact_angle[0] = 0.0

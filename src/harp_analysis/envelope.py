@@ -23,19 +23,16 @@ from functools import partial
 import numpy as np
 import pandas as pd
 
-from . import earth, threedof
-from .fire_control import FiringSolution, TargetPoint, firing_solutions
+from . import threedof
+from .fire_control import FiringSolution, TargetPoint, destination, firing_solutions
 from .launch import Launch
 from .sweeps import sweep
-from .trajectory import TruncatedFlightWarning, launch_frame
+from .trajectory import TruncatedFlightWarning
 from .validation import check_choice, check_range, finite_array, real_number
 
-__all__ = ["ROOTS", "MKS_CONVERGED_M", "MAP_COLUMNS", "destination", "three_dof_miss", "miss_map"]
+__all__ = ["ROOTS", "MAP_COLUMNS", "three_dof_miss", "miss_map"]
 
 ROOTS = ("low", "high")
-#: A firing solution whose own MKS residual is larger (m) is no solution: fire_control's
-#: refinement stopped on a bound of its bracket (seen on long westward shots) without landing.
-MKS_CONVERGED_M = 1.0
 #: The columns of :func:`miss_map`, one row per intercept point.
 MAP_COLUMNS = (
     "map_bearing_deg",  # the bearing from the gun along which the points lie
@@ -53,26 +50,6 @@ MAP_COLUMNS = (
     "miss_3dof_m",  # the 3DOF flown at the MKS solution: its miss (NaN where it cannot)
     "reason",  # why there is no 3DOF miss: no firing solution, or the 3DOF never got there
 )
-
-
-def destination(
-    gun: Launch, bearing_deg: float, downrange_m: float, altitude_m: float = 0.0
-) -> TargetPoint:
-    """The point ``downrange_m`` along the surface from ``gun`` (its latitude and longitude)
-    on the great circle leaving it at ``bearing_deg`` from true north, ``altitude_m`` up."""
-    bearing = math.radians(real_number(bearing_deg, "bearing_deg"))
-    distance = check_range(real_number(downrange_m, "downrange_m"), "downrange_m", low=0.0)
-    if distance > math.pi * earth.RADIUS_M:
-        raise ValueError(
-            f"downrange_m = {distance:g} m goes past the antipode "
-            f"({math.pi * earth.RADIUS_M:.0f} m along the surface)"
-        )
-    angle = distance / earth.RADIUS_M
-    up, along, _ = launch_frame(gun.latitude_rad, math.radians(gun.longitude_deg), bearing)
-    point = math.cos(angle) * np.ravel(up) + math.sin(angle) * np.ravel(along)
-    latitude = math.degrees(math.asin(float(np.clip(point[2], -1.0, 1.0))))
-    longitude = (math.degrees(math.atan2(point[1], point[0])) + 180.0) % 360.0 - 180.0
-    return TargetPoint(latitude, longitude, altitude_m)
 
 
 def three_dof_miss(
@@ -132,12 +109,6 @@ def _point(
             leaves_atmosphere=solution.leaves_atmosphere,
             mks_miss_m=solution.miss_m,
         )
-        if solution.miss_m > MKS_CONVERGED_M:
-            row["reason"] = (
-                f"no {root}-angle root: the MKS refinement stopped "
-                f"{solution.miss_m / 1e3:.1f} km from the target"
-            )
-            continue
         miss = three_dof_miss(gun, target, solution, rtol=rtol)
         row["miss_3dof_m"] = miss
         if not math.isfinite(miss):

@@ -903,15 +903,23 @@ BARBADOS_HP = Launch(
 
 
 def destination(
-    gun: Launch, bearing_deg: float, distance_m: float, altitude_m: float = 0.0
+    gun: Launch, bearing_deg: float, downrange_m: float, altitude_m: float = 0.0
 ) -> TargetPoint:
-    """The point ``distance_m`` along the great circle leaving the gun at ``bearing_deg``."""
-    up, downrange, _ = launch_frame(gun.latitude_rad, 0.0, math.radians(bearing_deg))
-    angle = real_number(distance_m, "distance_m") / earth.RADIUS_M
-    point = np.cos(angle) * np.ravel(up) + np.sin(angle) * np.ravel(downrange)
+    """The point ``downrange_m`` along the surface from ``gun`` (its latitude and longitude)
+    on the great circle leaving it at ``bearing_deg`` from true north, ``altitude_m`` up."""
+    bearing = math.radians(real_number(bearing_deg, "bearing_deg"))
+    distance = check_range(real_number(downrange_m, "downrange_m"), "downrange_m", low=0.0)
+    if distance > math.pi * earth.RADIUS_M:
+        raise ValueError(
+            f"downrange_m = {distance:g} m goes past the antipode "
+            f"({math.pi * earth.RADIUS_M:.0f} m along the surface)"
+        )
+    angle = distance / earth.RADIUS_M
+    up, along, _ = launch_frame(gun.latitude_rad, math.radians(gun.longitude_deg), bearing)
+    point = math.cos(angle) * np.ravel(up) + math.sin(angle) * np.ravel(along)
     latitude = math.degrees(math.asin(float(np.clip(point[2], -1.0, 1.0))))
-    longitude = (math.degrees(math.atan2(point[1], point[0])) + gun.longitude_deg + 180) % 360
-    return TargetPoint(latitude, longitude - 180, altitude_m)
+    longitude = (math.degrees(math.atan2(point[1], point[0])) + 180.0) % 360.0 - 180.0
+    return TargetPoint(latitude, longitude, altitude_m)
 
 
 def barbados_case() -> tuple[Launch, TargetPoint]:
