@@ -6,6 +6,8 @@ metadata. Checked against physics, not against any engine's earlier output:
 - in vacuum every engine flies the closed-form Kepler conic (:mod:`harp_analysis.kepler`);
 - in vacuum the specific energy v^2/2 - GM/r is conserved along the flight;
 - a cross wind from the left mirrors one from the right (the engines that model wind);
+- a day with denser air flies as a lighter projectile does (drag is rho A / m; the engines that
+  model the day's air);
 - the result converges as the engine's numerical tolerance tightens.
 """
 
@@ -40,6 +42,7 @@ class Engine:
     tolerances: tuple  # numerical options, loosest first, for the convergence check
     vacuum_tolerance_m: float  # how close to the conic its numerics allow
     has_wind: bool = True
+    has_day_air: bool = True
     full_table: bool = True
     energy_tolerance: float = 1e-9  # relative
 
@@ -56,6 +59,7 @@ ENGINES = [
         sixdof.simulate_6dof,
         ({"rtol": 1e-6}, {"rtol": 1e-8}, {"rtol": 1e-10}, {"rtol": 1e-12}),
         1e-3,
+        has_day_air=False,
     ),
     Engine(
         "MLT",
@@ -68,6 +72,7 @@ ENGINES = [
         ),
         50.0,
         energy_tolerance=1e-8,  # gravity frozen over each segment
+        has_day_air=False,
     ),
     Engine(
         "MKS",
@@ -206,3 +211,19 @@ def test_converges_as_the_tolerance_tightens(engine):
     differences = [abs(a - apogees[-1]) for a in apogees[:-1]]
     assert differences[0] > differences[-1]
     assert all(math.isfinite(a) for a in apogees)
+
+
+def test_a_denser_day_flies_as_a_lighter_projectile(engine):
+    """Drag per unit mass is rho Cd A / (2 m): 8 % more air at every height is 8 % less mass
+    (Cd depends on Mach alone, which the density does not change)."""
+    if not engine.has_day_air:
+        with pytest.warns(ModelValidityWarning, match="density_change_fraction"):
+            engine.fly(HP_CHAPTER_2.but(density_change_fraction=0.08))
+        return
+    lighter = dataclasses.replace(HP, name="HP lighter", mass_kg=HP.mass_kg / 1.08)
+    denser_day = _fly(engine, HP_CHAPTER_2.but(density_change_fraction=0.08)).attrs
+    light_round = _fly(engine, HP_CHAPTER_2.but(projectile=lighter)).attrs
+    normal = _fly(engine, HP_CHAPTER_2).attrs
+    assert denser_day["apogee_altitude_m"] < normal["apogee_altitude_m"] - 100.0
+    for key in ("apogee_altitude_m", "range_m", "time_of_flight_s"):  # to the rtol of 1e-9
+        assert denser_day[key] == pytest.approx(light_round[key], rel=1e-8)

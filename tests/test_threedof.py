@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
 from harp_analysis import earth, kepler, threedof, trajectory
+from harp_analysis.atmosphere import two_segment_speed_of_sound
 from harp_analysis.drag import BASELINE_CONE, M829, TabulatedDragLaw, get_drag_law
 from harp_analysis.launch import Launch
 from harp_analysis.projectiles import BASELINE, HP, Projectile, get_projectile
@@ -280,6 +281,8 @@ def test_escape_or_short_time_ends_cleanly():
         ({"bearing_deg": 360.0}, "bearing_deg"),
         ({"atmosphere": "martian"}, "atmosphere"),
         ({"head_wind_m_s": np.inf}, "head_wind_m_s"),
+        ({"density_change_fraction": -0.7}, "density_change_fraction"),
+        ({"temperature_change_k": 100.0}, "temperature_change_k"),
     ],
 )
 def test_bad_launch_is_named(changes, name):
@@ -351,6 +354,8 @@ LAUNCH_BOUNDS = {
     "head_wind_m_s": (-100.0, 100.0, True, True),
     "spin_rad_s": (-math.inf, math.inf, True, True),
     "rotation_rate_rad_s": (-1e-3, 1e-3, True, True),
+    "density_change_fraction": (-0.5, 0.5, True, True),
+    "temperature_change_k": (-60.0, 60.0, True, True),
 }
 
 _FUZZ_VALUES = st.one_of(
@@ -390,6 +395,25 @@ def test_launch_fields_are_finite_and_in_bounds_or_named(name, value):
 def test_launch_field_beyond_the_float_range_is_named(value):
     with pytest.raises(ValueError, match="spin_rad_s"):
         Launch(BASELINE, 2157.0, 45.0, spin_rad_s=value)
+
+
+def test_a_warmer_day_lowers_the_mach_number_as_the_speed_of_sound_of_warmer_air():
+    """a^2 = gamma R T: 30 K warmer air at every height (the launch's speed of sound and the
+    flight's Mach column both follow; the Mach-dependent Cd then changes the flight)."""
+    warm = BASELINE_45.but(temperature_change_k=30.0)
+    gamma_r = 1.4 * 287.05287
+    for altitude_m in (0.0, 20e3):
+        sound = two_segment_speed_of_sound(altitude_m)
+        assert warm.air(altitude_m)[1] == pytest.approx(np.sqrt(sound**2 + gamma_r * 30.0))
+    assert warm.launch_mach == pytest.approx(
+        2157.0 / np.sqrt(two_segment_speed_of_sound(0.0) ** 2 + gamma_r * 30.0)
+    )
+    table = threedof.simulate_3dof(warm, output_step_s=5.0)
+    air_speed = table.mach * np.sqrt(
+        two_segment_speed_of_sound(table.altitude_m.clip(0)) ** 2 + gamma_r * 30.0
+    )
+    speed = table.speed_m_s
+    assert np.allclose(air_speed, speed, rtol=1e-9)  # no wind: the air speed is the speed
 
 
 # --- drag laws --------------------------------------------------------------------------------

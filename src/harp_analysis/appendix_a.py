@@ -25,7 +25,7 @@ import numpy as np
 import pandas as pd
 
 from . import earth
-from .atmosphere import get_atmosphere
+from .atmosphere import day_air, get_atmosphere
 from .launch import Launch
 from .trajectory import describe, surface_ranges
 from .validation import check_range, finite_scalar, positive_scalar
@@ -86,9 +86,11 @@ def simulate_appendix_a(launch: Launch, dt_s: float, *, max_time_s: float = 3000
         altitude = r1 - R
         velocity = (x1 - x0) / dt + spin * np.array([-x1[1], x1[0], 0.0])  # sign as printed
         v = math.sqrt(velocity @ velocity)
-        temperature_speed = float(air.sound_kernel(altitude))
+        density, temperature_speed = day_air(
+            float(air.density_kernel(altitude)), float(air.sound_kernel(altitude)), *launch.day
+        )
         cd = float(law.evaluate(v / temperature_speed)) if temperature_speed > 0 else 0.0
-        drag = 0.5 * float(air.density_kernel(altitude)) * cd * area * v * velocity
+        drag = 0.5 * density * cd * area * v * velocity
         x2 = 2 * x1 - x0 - GM * x1 / r1**3 * dt**2 - drag / mass * dt**2
         r2 = math.sqrt(x2 @ x2)
         step_angle = math.acos(min(1.0, x2 @ x1 / (r2 * r1)))

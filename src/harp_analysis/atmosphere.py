@@ -34,6 +34,7 @@ from .validation import check_choice, check_range, finite_array, finite_scalar
 
 __all__ = [
     "DRY_AIR_GAS_CONSTANT_J_KG_K",
+    "SOUND_SQUARED_PER_KELVIN",
     "SEA_LEVEL_DENSITY_KG_M3",
     "TEXT_DECAY_CONSTANT_PER_M",
     "AtmosphereModel",
@@ -56,6 +57,7 @@ __all__ = [
     "model_r_squared",
     "text_model_r_squared",
     "fit_definition_table",
+    "day_air",
 ]
 
 SEA_LEVEL_DENSITY_KG_M3 = 1.225  # US Standard Atmosphere 1976; Chapter 3 B's rho0
@@ -63,6 +65,8 @@ TEXT_DECAY_CONSTANT_PER_M = 0.117e-3  # Chapter 3 B: k = 0.117 /km
 _HEAT_CAPACITY_RATIO = 1.4
 #: The 1976 standard's specific gas constant of dry air (J/(kg K)).
 DRY_AIR_GAS_CONSTANT_J_KG_K = 287.05287
+#: gamma R of dry air: a^2 = gamma R T (m^2/s^2 per kelvin).
+SOUND_SQUARED_PER_KELVIN = _HEAT_CAPACITY_RATIO * DRY_AIR_GAS_CONSTANT_J_KG_K
 _GAS_CONSTANT_J_KG_K = 287.0  # as Appendix A writes it (the standard's is 287.05287)
 
 # The reference table: ussa1976 is exact but slow to call per point, so tabulate once.
@@ -120,9 +124,7 @@ def _standard_speed_of_sound(a):
 
 @formula
 def _table_speed_of_sound(a, grid, temperature):
-    return np.sqrt(
-        _HEAT_CAPACITY_RATIO * DRY_AIR_GAS_CONSTANT_J_KG_K * np.interp(a, grid, temperature)
-    )
+    return np.sqrt(SOUND_SQUARED_PER_KELVIN * np.interp(a, grid, temperature))
 
 
 # --- Eqs 2.1 and 2.2, as coded in Appendix B -------------------------------------------------
@@ -252,6 +254,15 @@ class AtmosphereModel:
         if self.code == US1976:
             return np.array(_standard_table())
         return np.zeros((3, 2))
+
+
+@formula
+def day_air(density, sound, density_factor, sound_squared_change):
+    """The day's air from a model's: the density times ``density_factor`` (1 + the day's
+    relative change) and the speed of sound of air warmer by dT at every height,
+    sqrt(a^2 + gamma R dT) (``sound_squared_change`` = gamma R dT). An artillery met message's
+    "ballistic density" and "ballistic temperature" are such height-uniform changes."""
+    return density * density_factor, np.sqrt(sound * sound + sound_squared_change)
 
 
 # Compiled loops choose the model by number; each runs the formulas above.

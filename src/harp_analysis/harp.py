@@ -38,7 +38,7 @@ import pandas as pd
 from scipy.optimize import brentq, minimize_scalar
 
 from . import eci
-from .atmosphere import DRY_AIR_GAS_CONSTANT_J_KG_K
+from .atmosphere import SOUND_SQUARED_PER_KELVIN
 from .harp_data import FOOT_M, load_appendix, load_muzzle_speeds
 from .sites import get_site
 from .validation import check_choice
@@ -79,7 +79,6 @@ PRINT_HALF_UNITS = {
     "apogee_error_m": 5.0,
     "delta_apogee_m": 5.0,
 }
-_GAS = 1.4 * DRY_AIR_GAS_CONSTANT_J_KG_K  # gamma R, for the temperature behind a sound speed
 _TOLERANCE_KM = 0.02  # the Cd0 A interval of Appendix E's Error column: every round this close
 
 
@@ -275,7 +274,7 @@ def speed_of_sound(site: str) -> tuple[float, float, float]:
 
 def air_temperature_k(speed_of_sound_m_s: float) -> float:
     """The air temperature (K) of dry air with this speed of sound, a^2 / (gamma R)."""
-    return speed_of_sound_m_s**2 / _GAS
+    return speed_of_sound_m_s**2 / SOUND_SQUARED_PER_KELVIN
 
 
 # --- apogees -------------------------------------------------------------------------------------

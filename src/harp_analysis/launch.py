@@ -3,8 +3,9 @@
 A :class:`Launch` holds everything about a shot that is not a numerical option of an engine:
 the projectile and its muzzle speed (relative to the ground), the gun's elevation and bearing,
 the site (latitude, longitude, altitude), the wind, the spin the rifling gives, the atmosphere
-and the Earth's rotation. It is validated once, at construction, and each error names the
-field. The engines (:func:`harp_analysis.threedof.simulate_3dof`,
+with the day's change of density and temperature, and the Earth's rotation. It is validated
+once, at construction, and each error names the field. The engines
+(:func:`harp_analysis.threedof.simulate_3dof`,
 :func:`harp_analysis.sixdof.simulate_6dof`, :func:`harp_analysis.mlt.simulate_mlt`,
 :func:`harp_analysis.mks.for_launch`, :func:`harp_analysis.eci.solution_for_launch`,
 :func:`harp_analysis.appendix_a.simulate_appendix_a`) take one and add only their own numerical
@@ -13,6 +14,10 @@ launches below.
 
 Wind: ``cross_wind_m_s`` blows toward the right of the line of fire (positive cross range),
 ``head_wind_m_s`` against it, both constant with height (Chapter 2 A's "5 m/s cross wind").
+The day's air: ``density_change_fraction`` scales the atmosphere's density at every height
+(1 + the fraction) and ``temperature_change_k`` warms it by as much at every height (the speed of
+sound of :func:`harp_analysis.atmosphere.day_air`), as an artillery met message's ballistic
+density and temperature do: Chapter 7 B's "variation in atmospheric density".
 An engine whose model has no wind, or no rotating Earth, or launches from sea level only, says
 so: a ModelValidityWarning where the model merely leaves out an effect, a ValueError where it
 cannot fly the launch at all.
@@ -24,7 +29,9 @@ import math
 import warnings
 from dataclasses import dataclass, replace
 
-from .atmosphere import ATMOSPHERE_NAMES, get_atmosphere
+import numpy as np
+
+from .atmosphere import ATMOSPHERE_NAMES, SOUND_SQUARED_PER_KELVIN, day_air, get_atmosphere
 from .projectiles import BASELINE, HP, LP, Projectile
 from .validation import ModelValidityWarning, check_choice, check_range, real_number
 
@@ -54,6 +61,8 @@ class Launch:
     spin_rad_s: float = 0.0
     atmosphere: str = "two_segment"
     rotation_rate_rad_s: float = 0.0
+    density_change_fraction: float = 0.0
+    temperature_change_k: float = 0.0
 
     def __post_init__(self):
         if not isinstance(self.projectile, Projectile):
@@ -72,6 +81,9 @@ class Launch:
             "head_wind_m_s": dict(low=-100.0, high=100.0, unit="m/s"),
             "spin_rad_s": dict(),
             "rotation_rate_rad_s": dict(low=-1e-3, high=1e-3, unit="rad/s"),
+            # A day's air within these keeps every model's temperature above 120 K.
+            "density_change_fraction": dict(low=-0.5, high=0.5),
+            "temperature_change_k": dict(low=-60.0, high=60.0, unit="K"),
         }
         for name, limits in bounds.items():
             value = check_range(real_number(getattr(self, name), name), name, **limits)
@@ -94,21 +106,38 @@ class Launch:
         return math.radians(self.latitude_deg)
 
     @property
+    def day(self) -> tuple[float, float]:
+        """The day's change of the air as :func:`~harp_analysis.atmosphere.day_air` takes it:
+        the density factor and gamma R dT (m^2/s^2)."""
+        return (
+            1.0 + self.density_change_fraction,
+            SOUND_SQUARED_PER_KELVIN * self.temperature_change_k,
+        )
+
+    def air(self, altitude_m) -> tuple[np.ndarray, np.ndarray]:
+        """Density (kg/m^3) and speed of sound (m/s) of the launch's air on its day."""
+        model = get_atmosphere(self.atmosphere)
+        return day_air(model.density(altitude_m), model.speed_of_sound(altitude_m), *self.day)
+
+    @property
     def surface_density_kg_m3(self) -> float:
-        """Air density at the gun (the launch's atmosphere at the site's altitude)."""
-        return float(get_atmosphere(self.atmosphere).density(self.site_altitude_m))
+        """Air density at the gun (the launch's air at the site's altitude)."""
+        return float(self.air(self.site_altitude_m)[0])
 
     @property
     def launch_mach(self) -> float:
         """Muzzle speed over the speed of sound at the gun."""
-        sound = float(get_atmosphere(self.atmosphere).speed_of_sound(self.site_altitude_m))
-        return self.speed_m_s / sound
+        return self.speed_m_s / float(self.air(self.site_altitude_m)[1])
 
     @property
     def launch_drag_coefficient(self) -> float:
         """Cd0 of the projectile's drag law at the launch Mach number: the one value the MKS
         (eq 3.22) and the rotating-Earth corrections (eq 5.8) take for the whole flight."""
         return float(self.projectile.drag_law(self.launch_mach))
+
+    @property
+    def has_day_air(self) -> bool:
+        return self.density_change_fraction != 0.0 or self.temperature_change_k != 0.0
 
     @property
     def has_wind(self) -> bool:

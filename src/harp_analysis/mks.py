@@ -729,10 +729,16 @@ class ModifiedKeplerSolution:
 def gun_density_kg_m3(launch: Launch) -> float:
     """rho0 of the MKS for ``launch``: its air is eq 3.11's, rho0 exp(-k a) with rho0 =
     1.225 kg/m^3 (Chapter 3 B's fit to the 1976 standard atmosphere), taken at the site's
-    altitude, whatever air the simulations fly; none in a vacuum launch."""
+    altitude, whatever air the simulations fly, with the day's density change; none in a
+    vacuum launch."""
     if get_atmosphere(launch.atmosphere).density(0.0) == 0.0:
         return 0.0
-    return SEA_LEVEL_DENSITY_KG_M3 * math.exp(-TEXT_DECAY_CONSTANT_PER_M * launch.site_altitude_m)
+    day_factor = launch.day[0]
+    return (
+        day_factor
+        * SEA_LEVEL_DENSITY_KG_M3
+        * math.exp(-TEXT_DECAY_CONSTANT_PER_M * launch.site_altitude_m)
+    )
 
 
 def _launches(launches) -> list[Launch]:
@@ -850,7 +856,7 @@ def simulate_mks(
         -decay_constant_per_m * (altitude - launch.site_altitude_m)
     )
     drag = 0.5 * density * cd0 * projectile.reference_area_m2 * sample["speed_m_s"] ** 2
-    sound = get_atmosphere(launch.atmosphere).speed_of_sound(np.maximum(altitude, 0.0))
+    sound = launch.air(np.maximum(altitude, 0.0))[1]
     frame = pd.DataFrame(
         {
             "time_s": sample["time_s"],

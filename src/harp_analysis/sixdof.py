@@ -626,6 +626,12 @@ def rigid_body_launch(launch: Launch, engine: str, density_altitude: str) -> Rig
         "site_altitude_m",
         reason="Appendix B's frame is flat, non-rotating and starts at sea level",
     )
+    launch.warn_ignored(
+        engine,
+        "density_change_fraction",
+        "temperature_change_k",
+        reason="Appendix B's rigid-body model flies its atmosphere as the model gives it",
+    )
     projectile = check_rigid_body(launch.projectile, f"the {engine}")
     if math.cos(launch.elevation_rad) <= _SINGULAR_COS:
         raise ValueError(

@@ -11,7 +11,8 @@ results converge (to millimetres at the default ``rtol=1e-9``; see the benchmark
 is integrated in the Earth-centred inertial frame (x toward longitude 0 on the equator at
 launch, z north); with rotation off this frame is also Earth-fixed. Winds are fixed to the
 Earth, given as a head wind (blowing against the line of fire) and a cross wind (blowing toward
-the right of it) at launch.
+the right of it) at launch; the air of the launch's day (:func:`.atmosphere.day_air`) is the
+model's with its density change and temperature change.
 
 The right-hand side and the stepping loop are compiled (:mod:`.compiled`; :func:`warm_up`
 compiles them ahead of use, once per version of the package); a batch flies its launches one
@@ -30,7 +31,7 @@ import numpy as np
 import pandas as pd
 
 from . import earth
-from .atmosphere import air, get_atmosphere
+from .atmosphere import air, day_air, get_atmosphere
 from .compiled import jit, vector
 from .drag import drag_coefficient
 from .integrator import (
@@ -70,37 +71,39 @@ __all__ = ["simulate_3dof", "simulate_3dof_batch", "fly_3dof", "Flights", "warm_
 # (``air_code``, ``drag_code``: compile-time constants, so each pair gets its own machine code
 # without the other models' branches, half the time of a right-hand side) and ``dynamics``, the
 # atmosphere's table, the drag law's parameters and table, A / (2 m) and the Earth's rotation
-# rate. ``wind`` (3,) is the launch's Earth-fixed wind at t = 0, in inertial components.
+# rate. ``weather`` (5,) is the launch's: its Earth-fixed wind at t = 0 in inertial components,
+# then its day's density factor and gamma R dT (:attr:`.launch.Launch.day`).
 _OMEGA = 5
 
 
 @jit(inline=True)
-def _air_velocity(t, y, wind, omega):
+def _air_velocity(t, y, weather, omega):
     """Velocity relative to the air, which turns with the Earth and carries the wind."""
     if not omega:
-        return vector(y[3] - wind[0], y[4] - wind[1], y[5] - wind[2])
-    wind_x, wind_y = turned_about_axis(wind[0], wind[1], omega * t)
-    return vector(y[3] - omega * -y[1] - wind_x, y[4] - omega * y[0] - wind_y, y[5] - wind[2])
+        return vector(y[3] - weather[0], y[4] - weather[1], y[5] - weather[2])
+    wind_x, wind_y = turned_about_axis(weather[0], weather[1], omega * t)
+    return vector(y[3] - omega * -y[1] - wind_x, y[4] - omega * y[0] - wind_y, y[5] - weather[2])
 
 
 @jit(inline=True)
-def _forces(t, y, wind, air_code, drag_code, dynamics):
+def _forces(t, y, weather, air_code, drag_code, dynamics):
     """Radius, altitude, air velocity (3 numbers) and its norm, Mach, Cd and density."""
     radius = np.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
     altitude = radius - earth.RADIUS_M
-    air_x, air_y, air_z = _air_velocity(t, y, wind, dynamics[_OMEGA])
+    air_x, air_y, air_z = _air_velocity(t, y, weather, dynamics[_OMEGA])
     air_speed = np.sqrt(air_x * air_x + air_y * air_y + air_z * air_z)
-    density, sound = air(air_code, altitude, dynamics[0])
+    model_density, model_sound = air(air_code, altitude, dynamics[0])
+    density, sound = day_air(model_density, model_sound, weather[3], weather[4])
     mach = air_speed / sound
     cd = drag_coefficient(drag_code, mach, dynamics[1], dynamics[2], dynamics[3])
     return radius, altitude, air_x, air_y, air_z, air_speed, mach, cd, density
 
 
 @jit(inline=True)
-def _acceleration(t, y, wind, air_code, drag_code, dynamics):
+def _acceleration(t, y, weather, air_code, drag_code, dynamics):
     """Inverse-square gravity and drag opposite the air velocity (m/s^2, 3 numbers)."""
     radius, _, air_x, air_y, air_z, air_speed, _, cd, density = _forces(
-        t, y, wind, air_code, drag_code, dynamics
+        t, y, weather, air_code, drag_code, dynamics
     )
     drag = dynamics[4] * density * cd * air_speed
     gravity = -earth.GM_M3_S2 / radius**3
@@ -110,11 +113,13 @@ def _acceleration(t, y, wind, air_code, drag_code, dynamics):
 
 
 @jit(inline=True)
-def _derivative(t, y, wind, air_code, drag_code, dynamics, out, row):
+def _derivative(t, y, weather, air_code, drag_code, dynamics, out, row):
     """y' = [velocity, acceleration] into ``out[row]`` (indexed: a row view would cost
     reference counting in the stage loop)."""
     out[row, 0], out[row, 1], out[row, 2] = y[3], y[4], y[5]
-    out[row, 3], out[row, 4], out[row, 5] = _acceleration(t, y, wind, air_code, drag_code, dynamics)
+    out[row, 3], out[row, 4], out[row, 5] = _acceleration(
+        t, y, weather, air_code, drag_code, dynamics
+    )
 
 
 # --- the integration: DOP853 with events, one trajectory ---------------------------------------
@@ -126,7 +131,7 @@ def _grow(array, size):
 
 
 @jit(inline=True)
-def _integrate(y0, wind, air_code, drag_code, dynamics, numerics, record):
+def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
     """One flight from ``y0`` until it falls back to the site or reaches ``t_max_s``;
     ``numerics`` is ``(end_m, end_sign, breakpoints_m, t_max_s, rtol, floor, max_step_s)``: the
     altitude that ends the flight, falling through it (``end_sign`` +1) or rising (-1), the
@@ -140,14 +145,14 @@ def _integrate(y0, wind, air_code, drag_code, dynamics, numerics, record):
     k = np.empty((STAGES + 1, 6))
     y, y_new, work = y0.copy(), np.empty(6), np.empty(6)
     start = np.empty((2, 6))  # y' at the start and a trial step later
-    _derivative(0.0, y, wind, air_code, drag_code, dynamics, start, 0)
+    _derivative(0.0, y, weather, air_code, drag_code, dynamics, start, 0)
     scale = np.empty(6)
     for i in range(6):
         scale[i] = rtol * max(abs(y[i]), floor[i])
     h0 = trial_step(y, start[0], scale)
     for i in range(6):
         work[i] = y[i] + h0 * start[0, i]
-    _derivative(h0, work, wind, air_code, drag_code, dynamics, start, 1)
+    _derivative(h0, work, weather, air_code, drag_code, dynamics, start, 1)
     h = first_step(h0, start[0], start[1], scale, max_step_s)
     evaluations = 2
     a, a_new = start[0, 3:].copy(), np.empty(3)
@@ -168,7 +173,7 @@ def _integrate(y0, wind, air_code, drag_code, dynamics, numerics, record):
         for stage in range(1, STAGES + 1):  # the last is the solution's, at t + hi
             state, node = (work, c[stage]) if stage < STAGES else (y_new, 1.0)
             stage_state(stage, y, k, hi, state)
-            _derivative(t + node * hi, state, wind, air_code, drag_code, dynamics, k, stage)
+            _derivative(t + node * hi, state, weather, air_code, drag_code, dynamics, k, stage)
         for i in range(3):
             a_new[i] = k[STAGES, 3 + i]
         evaluations += STAGES
@@ -235,8 +240,8 @@ def _integrate(y0, wind, air_code, drag_code, dynamics, numerics, record):
 
 
 @jit(inline=True)
-def _fly_all(y0, wind, air_code, drag_code, dynamics, numerics, record):
-    """:func:`_integrate` for every launch (columns of ``y0`` and ``wind``): the times of the
+def _fly_all(y0, weather, air_code, drag_code, dynamics, numerics, record):
+    """:func:`_integrate` for every launch (columns of ``y0`` and ``weather``): the times of the
     apogee and impact (2, n), the states there (2, 6, n), the evaluations, steps and whether the
     integration failed (3, n), and the last launch's record of its steps (when ``record``)."""
     n = y0.shape[1]
@@ -246,7 +251,7 @@ def _fly_all(y0, wind, air_code, drag_code, dynamics, numerics, record):
     step_times, steps = np.empty(0), np.empty((9, 0))
     for i in range(n):
         flight = _integrate(
-            y0[:, i].copy(), wind[:, i].copy(), air_code, drag_code, dynamics, numerics, record
+            y0[:, i].copy(), weather[:, i].copy(), air_code, drag_code, dynamics, numerics, record
         )
         apogee_t, apogee, impact_t, end, evaluations, count, failed, step_times, steps = flight
         event_times[0, i], event_times[1, i] = apogee_t, impact_t
@@ -256,7 +261,7 @@ def _fly_all(y0, wind, air_code, drag_code, dynamics, numerics, record):
 
 
 @jit(inline=True)
-def _rows(times_s, step_times, steps, wind, air_code, drag_code, dynamics):
+def _rows(times_s, step_times, steps, weather, air_code, drag_code, dynamics):
     """States (6, m) at ``times_s`` within the recorded steps, and the forces there: radius,
     altitude, air speed, Mach, Cd and density (6, m)."""
     m = times_s.size
@@ -276,7 +281,7 @@ def _rows(times_s, step_times, steps, wind, air_code, drag_code, dynamics):
             y,
         )
         radius, altitude, _, _, _, air_speed, mach, cd, density = _forces(
-            times_s[j], y.copy(), wind, air_code, drag_code, dynamics
+            times_s[j], y.copy(), weather, air_code, drag_code, dynamics
         )
         forces[0, j], forces[1, j], forces[2, j] = radius, altitude, air_speed
         forces[3, j], forces[4, j], forces[5, j] = mach, cd, density
@@ -290,12 +295,12 @@ def _kernels(air_code: int, drag_code: int):
     of a right-hand side). Compiled at first use (:func:`warm_up`), then loaded from disk."""
 
     @jit
-    def fly(y0, wind, dynamics, numerics, record):
-        return _fly_all(y0, wind, air_code, drag_code, dynamics, numerics, record)
+    def fly(y0, weather, dynamics, numerics, record):
+        return _fly_all(y0, weather, air_code, drag_code, dynamics, numerics, record)
 
     @jit
-    def rows(times_s, step_times, steps, wind, dynamics):
-        return _rows(times_s, step_times, steps, wind, air_code, drag_code, dynamics)
+    def rows(times_s, step_times, steps, weather, dynamics):
+        return _rows(times_s, step_times, steps, weather, air_code, drag_code, dynamics)
 
     return fly, rows
 
@@ -337,7 +342,7 @@ def _launches(launches) -> list[Launch]:
 
 
 class _Batch(NamedTuple):
-    """What the launches of one batch share, and each one's initial state and wind."""
+    """What the launches of one batch share, and each one's initial state and weather."""
 
     codes: tuple[int, int]  # the atmosphere's and the drag law's
     dynamics: tuple
@@ -345,7 +350,7 @@ class _Batch(NamedTuple):
     site_m: float
     breakpoints_m: np.ndarray
     y0: np.ndarray  # (6, n)
-    wind: np.ndarray  # (3, n)
+    weather: np.ndarray  # (5, n): wind (3), density factor, gamma R dT
     up: np.ndarray  # (3, n)
     downrange: np.ndarray  # (3, n)
 
@@ -373,7 +378,7 @@ def _batch(launches: list[Launch]) -> _Batch:
     first = launches[0]
     omega, site = first.rotation_rate_rad_s, first.site_altitude_m
     codes, dynamics, breakpoints = _shared(first.projectile, first.atmosphere, omega)
-    elevation, speed, latitude, longitude, bearing, head, cross = np.array(
+    elevation, speed, latitude, longitude, bearing, head, cross, density, sound = np.array(
         [
             (
                 launch.elevation_deg,
@@ -383,6 +388,7 @@ def _batch(launches: list[Launch]) -> _Batch:
                 launch.bearing_deg,
                 launch.head_wind_m_s,
                 launch.cross_wind_m_s,
+                *launch.day,
             )
             for launch in launches
         ],
@@ -401,7 +407,7 @@ def _batch(launches: list[Launch]) -> _Batch:
         float(site),
         breakpoints,
         np.ascontiguousarray(np.concatenate([position, ground_velocity + surface_velocity])),
-        np.ascontiguousarray(-head * downrange + cross * right),
+        np.ascontiguousarray(np.vstack([-head * downrange + cross * right, density, sound])),
         up,
         downrange,
     )
@@ -429,6 +435,7 @@ class Flights(NamedTuple):
     steps: np.ndarray
     rhs_evaluations: np.ndarray
     end_position_m: np.ndarray  # (3, n) Earth-fixed (the inertial frame at t = 0)
+    end_velocity_m_s: np.ndarray  # (3, n) relative to the Earth, in the same axes
 
 
 def _fly(
@@ -446,7 +453,7 @@ def _fly(
         _STATE_FLOOR,
         _MAX_STEP_S,
     )
-    flights = fly(batch.y0, batch.wind, batch.dynamics, numerics, record)
+    flights = fly(batch.y0, batch.weather, batch.dynamics, numerics, record)
     failed = np.flatnonzero(flights[2][2])
     if failed.size:
         raise FloatingPointError(
@@ -492,6 +499,8 @@ def fly_3dof(
     apogee_ground, ground, cross = ground[:n], ground[n:], cross[n:]
     reached = np.isfinite(apogee_t)
     end_position = rotate_about_axis(states[1, :3], -batch.omega * end_t)
+    turning = batch.omega * np.array([-states[1, 1], states[1, 0], np.zeros(n)])
+    end_velocity = rotate_about_axis(states[1, 3:] - turning, -batch.omega * end_t)
     return Flights(
         apogee_t,
         np.where(reached, np.linalg.norm(states[0, :3], axis=0) - earth.RADIUS_M, np.nan),
@@ -504,6 +513,7 @@ def fly_3dof(
         counts[1],
         counts[0],
         end_position,
+        end_velocity,
     )
 
 
@@ -551,7 +561,7 @@ def simulate_3dof(
     end_t = impact_t if impact else step_times[-1]
     times = np.append(np.arange(0.0, end_t, step), end_t)
     y, forces = _kernels(*batch.codes)[1](
-        times, step_times, steps, batch.wind[:, 0], batch.dynamics
+        times, step_times, steps, batch.weather[:, 0], batch.dynamics
     )
     radius, altitude, air_speed, mach, cd, density = forces
     ground, cross = _ranges(batch, times, y[:3], 0)
