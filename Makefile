@@ -41,7 +41,7 @@ lint: $(STAMP)
 # The figures they draw are then compared with the committed ones, to an image tolerance.
 test: lint $(KERNELS)
 	scratch="$$(mktemp -d)" && \
-	HARP_ANALYSIS_FIGURES_DIR="$$scratch" $(BIN)/python -m pytest -n 2 tests --nbmake notebooks && \
+	HARP_ANALYSIS_FIGURES_DIR="$$scratch" $(BIN)/python -m pytest -n 2 --dist loadgroup tests --nbmake notebooks && \
 	HARP_ANALYSIS_REGENERATED_FIGURES="$$scratch" $(BIN)/python -m pytest -q tests/test_figure_images.py
 
 benchmark: $(KERNELS)
@@ -51,6 +51,7 @@ benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_mlt.py
 	$(BIN)/python benchmarks/bench_mks.py
 	$(BIN)/python benchmarks/bench_fire_control.py
+	$(BIN)/python benchmarks/bench_sweeps.py
 
 clean-venv:
 	rm -rf $(VENV)

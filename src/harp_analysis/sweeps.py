@@ -1,23 +1,42 @@
 """Sweeps: the one way a function runs over many independent items (maps, Monte Carlo).
 
 :func:`sweep` calls ``function(item)`` for every item and returns the results in the items'
-order: in this process by default, with a progress bar (tqdm) when someone is watching, or on
-a Dask cluster when given its ``client`` (any object with Dask's ``map`` and ``gather``; Dask
-itself is not imported here). ``function`` and the items must then be picklable: a module-level
-function, or a :func:`functools.partial` of one, not a lambda or a closure.
+order, or folds them in that order into one state (``reduce``), so that a Monte Carlo of a
+million samples keeps no more than a window of items and results in memory. It runs in this
+process by default, with a progress bar (tqdm) when someone is watching, or on a Dask cluster
+when given its ``client`` (``distributed`` is imported only then). Either way the results are
+the same, bit for bit: each is folded in the items' order, whichever worker ran it and whenever
+it finished. A worker lost mid-sweep costs a rerun of its tasks (the scheduler's
+``allowed-failures``), never a lost or a duplicated result. On a cluster, ``function`` and the
+items travel by cloudpickle: a module's function by its name (the workers must import it), a
+lambda, closure or :func:`functools.partial` by value.
+
+:func:`chunks` splits a sample count into ranges of indices, and :func:`sample_chunk` draws one
+range's points of a seeded sample (Sobol' or Philox), so that a chunk's samples depend only on
+the seed and its indices: the chunks, concatenated, are the single draw.
 """
 
 from __future__ import annotations
 
+import numbers
 import os
 import sys
-from collections.abc import Callable, Iterable
+import warnings
+from collections.abc import Callable, Generator, Iterable, Sized
+from contextlib import closing, contextmanager
 from typing import Any, TypeVar
 
-__all__ = ["sweep", "interactive"]
+import numpy as np
+from scipy.stats import qmc
+
+from .validation import check_choice
+
+__all__ = ["sweep", "interactive", "chunks", "sample_chunk", "SAMPLING_METHODS"]
 
 Item = TypeVar("Item")
 Result = TypeVar("Result")
+
+SAMPLING_METHODS = ("sobol", "random")
 
 
 def interactive() -> bool:
@@ -29,13 +48,101 @@ def interactive() -> bool:
     return bool(terminal) or "JPY_SESSION_NAME" in os.environ
 
 
+def _whole_number(value, name: str, low: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name} must be a whole number; got {value!r}")
+    if value < low:
+        raise ValueError(f"{name} must be >= {low}; got {value}")
+    return int(value)
+
+
 def _check_client(client) -> None:
-    missing = [name for name in ("map", "gather") if not callable(getattr(client, name, None))]
-    if missing:
+    if not callable(getattr(client, "submit", None)):
         raise TypeError(
-            f"client must be a Dask client (with map and gather); {type(client).__name__} "
-            f"has no {' or '.join(missing)}"
+            f"client must be a Dask client (a distributed.Client, with submit); "
+            f"{type(client).__name__} has no submit"
         )
+
+
+def _default_window(client) -> int:
+    """Twice the cluster's threads, so that every thread has a task queued behind its current
+    one; 4 if the client cannot tell."""
+    nthreads = getattr(client, "nthreads", None)
+    threads = sum(nthreads().values()) if callable(nthreads) else 0
+    return 2 * threads if threads else 4
+
+
+@contextmanager
+def _progress_bar(progress: bool, total: int | None, description: str | None):
+    """Yields the function that counts one item done: a tqdm bar's when someone watches."""
+    if progress and interactive():
+        try:
+            from tqdm import tqdm
+        except ImportError:  # tqdm is pinned in environment.txt; a bare install may lack it
+            pass
+        else:
+            with tqdm(total=total, desc=description, leave=False) as bar:
+                yield bar.update
+            return
+    yield lambda: None
+
+
+_RAISED_BY = "raised by item {} of the sweep"  # the note on a function's exception
+
+
+def _in_process(function, items: Iterable, advance: Callable[[], Any]) -> Generator:
+    for index, item in enumerate(items):
+        try:
+            result = function(item)
+        except Exception as error:
+            error.add_note(_RAISED_BY.format(index))
+            raise
+        advance()
+        yield result
+
+
+def _on_cluster(function, items: Iterable, client, window: int, advance) -> Generator:
+    """The results in the items' order, with at most ``window`` items submitted and not yet
+    handed on. Each future is collected once, by its key, so a task the scheduler reran after
+    losing a worker is not counted twice (and Dask's own rerun needs no ``retries``, which
+    would only rerun a function's real exceptions)."""
+    from distributed import as_completed
+
+    source = enumerate(items)
+    running: dict[str, tuple[int, Any]] = {}  # a future's key: the item's index, the future
+    finished: dict[int, Any] = {}  # results waiting for an earlier item's
+    completed = as_completed()
+    next_index = 0
+
+    def top_up():
+        while len(running) + len(finished) < window:
+            entry = next(source, None)
+            if entry is None:
+                return
+            index, item = entry
+            future = client.submit(function, item, pure=False)  # equal items: distinct tasks
+            running[future.key] = (index, future)
+            completed.add(future)
+
+    try:
+        top_up()
+        for future in completed:
+            if future.key not in running:
+                continue
+            index, _ = running.pop(future.key)
+            try:
+                finished[index] = future.result()
+            except Exception as error:
+                error.add_note(_RAISED_BY.format(index))
+                raise
+            advance()
+            while next_index in finished:
+                yield finished.pop(next_index)
+                next_index += 1
+            top_up()
+    finally:
+        if running:
+            client.cancel([future for _, future in running.values()])
 
 
 def sweep(
@@ -45,23 +152,81 @@ def sweep(
     client: Any = None,
     progress: bool = True,
     description: str | None = None,
-) -> list[Result]:
-    """``[function(item) for item in items]``, in the items' order.
+    reduce: Callable[[Any, Result], Any] | None = None,
+    initial: Any = None,
+    window: int | None = None,
+) -> Any:
+    """``[function(item) for item in items]``, in the items' order; or, given ``reduce``, the
+    fold ``state = reduce(state, result)`` over those results in the items' order, starting from
+    ``initial``, keeping nothing but the state and the items in flight.
 
-    In this process, with a tqdm bar labelled ``description`` if ``progress`` and the session
-    is :func:`interactive`; on a Dask cluster if ``client`` is given (``client.map`` then
-    ``client.gather``; the cluster shows its own progress in its dashboard)."""
+    ``items`` may be any iterable, a lazy generator included: it is read as the sweep goes. In
+    this process the items run one at a time; on a Dask cluster (``client``) at most ``window``
+    of them are submitted and not yet folded (by default twice the cluster's threads). A tqdm
+    bar labelled ``description`` counts the items done if ``progress`` and the session is
+    :func:`interactive`; its total is known when ``items`` has a length. An exception raised by
+    ``function`` comes out of the sweep with a note naming the item's index."""
     if not callable(function):
         raise TypeError(f"function must be callable; got {type(function).__name__}")
-    items = list(items)
+    if reduce is not None and not callable(reduce):
+        raise TypeError(f"reduce must be callable; got {type(reduce).__name__}")
+    if reduce is None and initial is not None:
+        raise TypeError("initial is the start of reduce's fold; give it with reduce")
+    if not isinstance(items, Iterable):
+        raise TypeError(f"items must be iterable; got {type(items).__name__}")
+    total = len(items) if isinstance(items, Sized) else None
+    if window is not None:
+        window = _whole_number(window, "window", low=1)
     if client is not None:
         _check_client(client)
-        return list(client.gather(client.map(function, items)))
-    if progress and interactive() and items:
-        try:
-            from tqdm import tqdm
-        except ImportError:  # tqdm is pinned in environment.txt; a bare install may lack it
-            pass
+    with _progress_bar(progress, total, description) as advance:
+        if client is None:
+            results = _in_process(function, items, advance)
         else:
-            return [function(item) for item in tqdm(items, desc=description, leave=False)]
-    return [function(item) for item in items]
+            window = window or _default_window(client)
+            results = _on_cluster(function, items, client, window, advance)
+        with closing(results):  # cancels a cluster's remaining tasks if the fold fails
+            if reduce is None:
+                return list(results)
+            state = initial
+            for result in results:
+                state = reduce(state, result)
+            return state
+
+
+def chunks(count: int, size: int) -> list[range]:
+    """The half-open ranges of sample indices [0, size), [size, 2 size), ... that cover
+    ``count`` samples, the last one shorter if ``size`` does not divide ``count``: the items of
+    a sweep over a large sample (a list, so a progress bar knows its length)."""
+    count = _whole_number(count, "count", low=1)
+    size = _whole_number(size, "size", low=1)
+    return [range(start, min(start + size, count)) for start in range(0, count, size)]
+
+
+def sample_chunk(seed: int, dimensions: int, indices: range, method: str = "sobol") -> np.ndarray:
+    """Points ``indices`` (a range of sample numbers) of the sample of ``dimensions``-dimensional
+    points in [0, 1)^dimensions drawn from ``seed``, shape (len(indices), dimensions). The points
+    depend only on the seed and the indices, so chunks drawn by any worker in any order,
+    concatenated, equal the one draw of their total count.
+
+    ``method`` "sobol": scipy's scrambled Sobol' sequence (its balance holds for a whole sample
+    of a power of 2 points; a chunk need not be one), fast-forwarded to the chunk's start;
+    "random": numpy's Philox generator, its counter advanced to the chunk's start."""
+    seed = _whole_number(seed, "seed", low=0)
+    dimensions = _whole_number(dimensions, "dimensions", low=1)
+    if not isinstance(indices, range) or indices.step != 1 or indices.start < 0:
+        raise ValueError(f"indices must be a range of sample numbers >= 0, step 1; got {indices!r}")
+    check_choice(method, "method", SAMPLING_METHODS)
+    if method == "sobol":
+        engine = qmc.Sobol(dimensions, scramble=True, rng=seed)
+        if indices.start:  # scipy's fast_forward cannot take 0 steps
+            engine.fast_forward(indices.start)
+        with warnings.catch_warnings():  # the balance is the whole sample's, not a chunk's
+            warnings.filterwarnings("ignore", "The balance properties", UserWarning)
+            return engine.random(len(indices))
+    bit_generator = np.random.Philox(key=seed)
+    # one 64-bit draw per number; Philox's counter steps over blocks of four draws
+    blocks, within = divmod(indices.start * dimensions, 4)
+    bit_generator.advance(blocks)
+    bit_generator.random_raw(within)
+    return np.random.Generator(bit_generator).random((len(indices), dimensions))
