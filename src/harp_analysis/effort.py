@@ -34,8 +34,8 @@ What the branch rule changes in the 3DOF and 6DOF: the 6DOF's ``_air_altitude`` 
 3DOF's ``_air_velocity`` have branches of different cost (1 fewer each when only the costlier
 counts): the 6DOF's right-hand side is 300 operations (its coefficient interpolation 2 per each
 of the table's 9 columns), the 3DOF's 80 (81; 4 of them the day's air of
-:func:`.atmosphere.day_air`, which the 6DOF leaves out). In MLT the loop is ``_phi``'s series (18 terms
-of :data:`harp_analysis.mlt._PHI3_SERIES`); complex-weighted are ``_phi`` (also where
+:func:`.atmosphere.day_air`, which the 6DOF leaves out). In MLT the loop is ``_phi``'s series
+(18 terms of :data:`harp_analysis.mlt._PHI3_SERIES`); complex-weighted are ``_phi`` (also where
 ``_scalar_solution`` calls it on a real argument) and ``_epicyclic_solution``, while
 ``propagate_segment``, real but for 6 complex operations (about 14 real ones), counts at
 weight 1.

@@ -39,7 +39,9 @@ from scipy.optimize import brentq, minimize_scalar
 
 from . import eci
 from .atmosphere import SOUND_SQUARED_PER_KELVIN
+from .drag import ExponentialDragLaw
 from .harp_data import FOOT_M, load_appendix, load_muzzle_speeds
+from .projectiles import Projectile
 from .sites import get_site
 from .validation import check_choice
 
@@ -54,6 +56,7 @@ __all__ = [
     "beta_column_drag_area",
     "drag_area_table",
     "speed_of_sound",
+    "martlet",
     "air_temperature_k",
     "predicted_apogees",
     "appendix_columns",
@@ -82,8 +85,10 @@ PRINT_HALF_UNITS = {
 _TOLERANCE_KM = 0.02  # the Cd0 A interval of Appendix E's Error column: every round this close
 
 
-def _site_launch(site, speed_m_s, mass_kg, drag_area, model):
+def _site_launch(site, speed_m_s, mass_kg, drag_area, model, surface_density_kg_m3=None):
+    """The launch correction of rounds fired from ``site``'s gun, in its air (or another)."""
     launch_site = get_site(site)
+    density = surface_density_kg_m3
     return eci.launch_correction(
         speed_m_s,
         launch_site.elevation_rad,
@@ -91,7 +96,7 @@ def _site_launch(site, speed_m_s, mass_kg, drag_area, model):
         launch_site.latitude_rad,
         drag_area_m2=drag_area,
         mass_kg=mass_kg,
-        surface_density_kg_m3=launch_site.surface_density_kg_m3,
+        surface_density_kg_m3=launch_site.surface_density_kg_m3 if density is None else density,
         model=model,
     )
 
@@ -256,6 +261,22 @@ def drag_area_table() -> pd.DataFrame:
             rows[f"{site} Beta column, {model}"] = beta_column_drag_area(site, model)
     rows["yuma Error column, dissertation"] = fit_drag_area_to_errors()
     return pd.DataFrame(rows, index=["fitted", "low", "high"]).T
+
+
+def martlet(mass_kg: float, launch_speed_m_s: float, model: str = "dissertation") -> Projectile:
+    """A Martlet 2C (Mod 2) round as Chapter 6 flies it, for the simulations: a point mass of
+    ``mass_kg`` with ``model``'s constant drag area Cd0 A (:func:`drag_area_m2`), the MKS's
+    assumption. The text gives neither the Martlet's reference area nor how its drag changes
+    with Mach; only the product Cd0 A enters a flight whose Cd is constant, so the reference
+    area is Cd0 A and Cd is 1."""
+    return Projectile(
+        f"Martlet 2C (Mod 2), {mass_kg:.4g} kg",
+        mass_kg,
+        drag_area_m2(model),
+        ExponentialDragLaw(0.0, 0.0, 1.0),
+        launch_speed_m_s,
+        f"Ch. 6 and Appendices D-E: the {model} model's Cd0 A, constant",
+    )
 
 
 def speed_of_sound(site: str) -> tuple[float, float, float]:
