@@ -1,0 +1,198 @@
+"""The better MKS (issue 17, part 3): exact in the drag-free limit, a continuous non-increasing
+angular momentum, an asymptote and a flight closer to the 3DOF than the dissertation's MKS on
+launches the fit never saw. Thresholds come from the comparison itself (improved against the
+dissertation's), from the closed-form conic, or from rounding; none from earlier output."""
+
+import inspect
+import math
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from harp_analysis import kepler, mks, mks_improved, mks_improvement
+from harp_analysis.launch import baseline_chapter_4
+from harp_analysis.validation import ModelValidityWarning
+
+NON_ROTATING_JUDGED = [
+    launch for launch in mks_improvement.JUDGING if launch.rotation_rate_rad_s == 0.0
+]
+
+
+def _rms(values) -> float:
+    return float(np.sqrt(np.mean(np.square(values))))
+
+
+@pytest.fixture(scope="module")
+def judged():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelValidityWarning)
+        return mks_improvement.judge()
+
+
+@pytest.mark.parametrize("elevation", [30.0, 55.0, 85.0])
+def test_in_a_vacuum_it_is_the_kepler_conic(elevation):
+    """No air: no loss on the way up or down, and the improved MKS is eq 3.8's conic: apogee,
+    range and time of flight of the closed form (kepler.ballistic_conic)."""
+    launch = baseline_chapter_4(elevation, atmosphere="vacuum")
+    solution = mks_improved.solve(launch)
+    conic = kepler.ballistic_conic(launch.speed_m_s, launch.elevation_rad)
+    assert solution.ascent.beta[0, 0] == 0.0 and solution.beta_reentry == 0.0
+    # to 10 um: rounding of 1/u at r = 6.6e6 m and the apogee's Newton step (1e-12 rad)
+    assert solution.apogee_altitude_m == pytest.approx(float(conic.apogee_altitude_m), abs=1e-5)
+    assert solution.impact_angle == pytest.approx(float(conic.range_angle_rad), rel=1e-12)
+    # the time quadrature (3-point Gauss on 4000 intervals) against Kepler's equation
+    assert solution.impact_time_s == pytest.approx(float(conic.time_of_flight_s), rel=1e-9)
+    assert solution.apogee_time_s == pytest.approx(float(conic.time_to_apogee_s), rel=1e-9)
+
+
+def test_the_dissertation_variant_is_the_mks_of_the_text():
+    """Through the same interface, the 'dissertation' variant is mks.for_launch's MKS."""
+    launch = baseline_chapter_4(45.0)
+    text = mks.for_launch(launch, warn=False)
+    variant = mks_improved.dissertation(launch)
+    assert variant.beta_reentry == 0.0
+    assert variant.apogee_altitude_m == pytest.approx(float(text.apogee_altitude()), rel=1e-12)
+    assert variant.impact_angle == pytest.approx(float(text.impact_angle), rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    "launch",
+    NON_ROTATING_JUDGED,
+    ids=lambda launch: f"{launch.projectile.name}-{launch.elevation_deg:g}",
+)
+def test_angular_momentum_is_continuous_and_never_rises(launch):
+    """On a non-rotating Earth, h(theta) runs from h0 at launch to h_inf e^{-beta_re} at
+    impact, continuous (no step larger than its steepest slope allows on the grid) and
+    non-increasing (to rounding)."""
+    solution = mks_improved.solve(launch)
+    theta = np.linspace(0.0, solution.impact_angle, 20001)
+    h = np.ravel(solution.angular_momentum(theta))
+    # at launch the re-entry branch's tail, exp(-beta_re e^{-tau_re theta_imp}), is 1 to 1e-6
+    tail = math.exp(-solution.beta_reentry * math.exp(-solution.tau_reentry * theta[-1]))
+    assert tail == pytest.approx(1.0, abs=1e-6)
+    assert h[0] == pytest.approx(float(solution.ascent.h0[0, 0]) * tail, rel=1e-12)
+    # at impact the ascent's branch is h_inf exp(beta e^{-tau theta_imp}), all but spent
+    beta, tau = float(solution.ascent.beta[0, 0]), float(solution.ascent.tau[0, 0])
+    spent = math.exp(beta * math.exp(-tau * theta[-1]))
+    assert spent == pytest.approx(1.0, abs=1e-4)
+    end = float(solution.ascent.h_inf[0, 0]) * spent * math.exp(-solution.beta_reentry)
+    assert h[-1] == pytest.approx(end, rel=1e-12)
+    assert np.all(np.diff(h) <= 1e-12 * h[0])
+    # d ln h / dtheta is at most beta tau (ascent) or beta_re tau_re (re-entry)
+    steepest = max(
+        float(solution.ascent.beta[0, 0] * solution.ascent.tau[0, 0]),
+        solution.beta_reentry * solution.tau_reentry,
+    )
+    assert np.max(np.abs(np.diff(np.log(h)))) <= steepest * (theta[1] - theta[0]) * (1 + 1e-9)
+
+
+def test_the_ascent_is_its_own_fixed_point():
+    """Its beta is the loss integral along its own path: integrating the rate again along the
+    returned solution gives the same beta (to the fixed point's tolerance)."""
+    launch = baseline_chapter_4(40.0)
+    solution = mks_improved.solve(launch)
+    ascent = solution.ascent
+    air = mks_improved._Air(launch, solution.plane)
+    top = mks_improved._top_angle(ascent, 0.0, float(ascent.apogee_angle), rising=True)
+    theta = mks_improved._ascent_grid(top)
+    rate = air.rates(
+        theta, ascent.u(theta), ascent.du_dtheta(theta), ascent.angular_momentum(theta)
+    )
+    loss, tau = mks_improved._loss_and_rate(rate[0], theta)
+    assert loss == pytest.approx(float(ascent.beta[0, 0]), rel=1e-8)
+    assert tau == pytest.approx(float(ascent.tau[0, 0]), rel=1e-8)
+
+
+def test_asymptote_is_closer_to_the_3dof_than_the_dissertations():
+    """h_inf against the 3DOF's h at apogee (above 40 km, no drag left; Fig 4.12's measure):
+    closer on every non-rotating judged launch, and in RMS over the whole judging set (on the
+    rotating Earth Chapter 5's V_tangent direction, kept, leaves per-launch noise)."""
+    errors = mks_improvement.asymptote_errors()
+    still = errors[errors.latitude_deg.eq(0.0) & errors.bearing_deg.eq(90.0)]
+    still = still.iloc[: len(NON_ROTATING_JUDGED)]
+    assert np.all(still.improved.abs() < still.dissertation.abs())
+    assert _rms(errors.improved) < _rms(errors.dissertation)
+
+
+def test_beats_the_dissertations_mks_on_the_judging_set(judged):
+    """The issue's test. Max position error: lower on every judged launch. Impact-point miss:
+    lower on every non-rotating judged launch and in RMS over all; on the rotating Earth the
+    impact is per launch at the mercy of the cross-track push kept as an impulse at launch, so
+    it is judged in aggregate (the error maps show where)."""
+    pivot = judged.pivot_table(
+        index=["projectile", "elevation_deg", "latitude_deg", "bearing_deg", "rotating"],
+        columns="variant",
+        values=["max_error_m", "impact_miss_m"],
+    )
+    assert len(pivot) == len(mks_improvement.JUDGING)
+    max_error, miss = pivot["max_error_m"], pivot["impact_miss_m"]
+    assert np.all(max_error.improved < max_error.dissertation)
+    still = miss.xs(False, level="rotating")
+    assert np.all(still.improved < still.dissertation)
+    assert _rms(miss.improved) < _rms(miss.dissertation)
+
+
+def test_fit_sees_only_the_training_launches(monkeypatch):
+    """Structural: fit takes the training launches and nothing else, the two sets share no
+    launch, and every MKS the fit solves is a training launch's."""
+    assert list(inspect.signature(mks_improvement.fit).parameters) == ["training"]
+    assert not set(mks_improvement.TRAINING) & set(mks_improvement.JUDGING)
+    seen = []
+    solve = mks_improved.solve
+
+    def recording(launch, *args, **kwargs):
+        seen.append(launch)
+        return solve(launch, *args, **kwargs)
+
+    monkeypatch.setattr(mks_improved, "solve", recording)
+    fitted = mks_improvement.fit(mks_improvement.TRAINING)
+    assert seen and set(seen) <= set(mks_improvement.TRAINING)
+    assert fitted == mks_improvement.calibration()
+
+
+def test_error_map_has_both_variants_on_its_grid():
+    grid = mks_improvement.error_map((0.0, 180.0), (45.0,), (30.0,), progress=False)
+    assert len(grid) == 2
+    assert list(grid.bearing_deg) == [0.0, 180.0]
+    for variant in mks_improved.VARIANTS:
+        for measure in ("impact_miss_m", "max_error_m"):
+            assert np.all(np.isfinite(grid[f"{variant}_{measure}"]))
+            assert np.all(grid[f"{variant}_{measure}"] > 0.0)
+
+
+def test_warns_where_the_air_carries_much_of_the_angular_momentum():
+    """Fired west at 85 deg from the equator, the surface's 465 m/s eastward overtakes the gun's
+    188 m/s westward: inertially a slow eastward shot, whose h the air's omega r0^2 dwarfs."""
+    launch = mks_improvement._rotating(85.0, 0.0, 270.0)
+    low, high = mks_improved.AIR_MOMENTUM_SHARE_RANGE
+    assert not low < mks_improved.air_momentum_share(launch) <= high
+    with pytest.warns(ModelValidityWarning, match="angular momentum"):
+        try:
+            mks_improved.solve(launch)
+        except ValueError:
+            pass  # it may also find no finite re-entry decay; the warning came first
+    assert mks_improved.air_momentum_share(baseline_chapter_4(45.0)) == 0.0
+
+
+def test_bad_input_is_refused_by_name():
+    with pytest.raises(TypeError, match="launch"):
+        mks_improved.solve("baseline")
+    with pytest.raises(TypeError, match="calibration"):
+        mks_improved.solve(baseline_chapter_4(45.0), 1.0)
+    with pytest.raises(ValueError, match="variant"):
+        mks_improved.flight(baseline_chapter_4(45.0), "better")
+    with pytest.raises(TypeError, match="training"):
+        mks_improvement.fit([])
+
+
+@given(st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.text(max_size=3)))
+def test_calibration_checks_its_factor(value):
+    try:
+        calibration = mks_improved.Calibration(reentry_scale=value)
+    except (TypeError, ValueError) as error:
+        assert "reentry_scale" in str(error)
+    else:
+        assert math.isfinite(calibration.reentry_scale) and calibration.reentry_scale >= 0.0
