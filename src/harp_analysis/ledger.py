@@ -2,8 +2,9 @@
 
 The ledger is ``registry/claims.toml``. Each ``[[claim]]`` names the package callable that
 computes the project's value (``compute = "module:function"``, with optional ``kwargs``, an
-optional ``field`` to read from the result and an optional ``scale`` to the row's unit), so the
-value is recomputed on every evaluation and never typed in. Verdicts are checked against the
+optional ``field`` to read from the result, dotted for a field of a field, and an optional
+``scale`` to the row's unit), so the value is recomputed on every evaluation and never typed
+in. Verdicts are checked against the
 numbers (:func:`verdict_problems`), so a verdict cannot silently go stale:
 
 - ``reproduces``: the computed value is within ``tolerance`` of the text's;
@@ -170,8 +171,8 @@ def evaluate(claim: Claim) -> ClaimResult:
     """Compute the project's value of ``claim`` by calling the package."""
     module_name, _, attribute = claim.compute.partition(":")
     result = getattr(importlib.import_module(module_name), attribute)(**claim.kwargs)
-    if claim.field:
-        result = getattr(result, claim.field)
+    for name in claim.field.split(".") if claim.field else ():
+        result = getattr(result, name)
     return ClaimResult(claim, float(result) * claim.scale)
 
 

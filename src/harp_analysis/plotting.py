@@ -5,7 +5,8 @@ Styles. Series are told apart without colour, and each colour means one thing ac
 
 - the model or engine has a colour of the Okabe-Ito palette (safe for colour-blind readers)
   and a line style: 3DOF solid blue, 6DOF dashed orange, MLT dash-dot green, MKS dotted
-  vermillion; measured data are black markers, the text's values grey;
+  vermillion (the project's improved MKS sky blue, dash-dot-dotted); measured data are black
+  markers, the text's values grey;
 - the projectile has a marker: HP circle, LP square, the baseline cone triangle;
 - the gun elevation has a shade of reddish purple, light to dark from 30 to 85 deg, and a
   marker of its own; such curves are also labelled directly (:func:`label_lines`).
@@ -76,11 +77,13 @@ OKABE_ITO = {
     "grey": "#7F7F7F",
 }
 #: Each model's colour and line style, the same in every figure.
-ENGINE_STYLES = {
+ENGINE_STYLES: dict[str, dict[str, Any]] = {
     "3DOF": {"color": OKABE_ITO["blue"], "linestyle": "-"},
     "6DOF": {"color": OKABE_ITO["orange"], "linestyle": "--"},
     "MLT": {"color": OKABE_ITO["bluish green"], "linestyle": "-."},
     "MKS": {"color": OKABE_ITO["vermillion"], "linestyle": ":"},
+    # the project's improved MKS (harp_analysis.mks_improved), beside the text's
+    "improved MKS": {"color": OKABE_ITO["sky blue"], "linestyle": (0, (6, 2, 1, 2, 1, 2))},
     "measured": {"color": OKABE_ITO["black"], "linestyle": "none", "marker": "o"},
     "text": {"color": OKABE_ITO["grey"], "linestyle": "none", "marker": "x"},
 }
