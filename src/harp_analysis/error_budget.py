@@ -41,7 +41,7 @@ from .harp_data import FOOT_M
 from .launch import Launch, baseline_chapter_4, chapter_2
 from .projectiles import HP
 from .sites import BARBADOS
-from .sweeps import chunks, sample_chunk, sweep
+from .sweeps import SAMPLING_METHODS, chunks, sample_chunk, sweep
 from .threedof import fly_3dof
 from .trajectory import rotate_about_axis
 from .validation import check_choice, check_range, finite_scalar
@@ -332,7 +332,7 @@ def dispersion(
     impact point and of the position at the nominal apogee time from the nominal flight's, and
     the standard deviation of each of :data:`OUTPUTS` (``sd_<output>_m``)."""
     uncertainties = _check_uncertainties(uncertainties)
-    check_choice(method, "method", ("sobol", "random"))
+    check_choice(method, "method", SAMPLING_METHODS)
     if not uncertainties:
         raise ValueError("uncertainties must name at least one input (an sd of 0 is allowed)")
     _, apogee_time, _ = nominal(launch)
