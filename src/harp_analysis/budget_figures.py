@@ -60,7 +60,7 @@ def draw_error_budget(inputs: dict[str, pd.DataFrame], budget: pd.DataFrame):
             ax.plot(np.array(values)[shown] / 1e3, y[shown], label=name, **look)
         ax.axhspan(len(rows) - 2.5, len(rows) - 0.5, color=OKABE_ITO["grey"], alpha=0.12, lw=0)
         ax.set_xscale("log")
-        ax.set_xlabel("miss (km, 1 sd)")
+        ax.set_xlabel("distance from the nominal 3DOF flight (km)")
         ax.set_title(title.capitalize(), fontsize=10)
     axes[0].set_yticks(range(len(rows)), rows)
     axes[0].invert_yaxis()
@@ -99,11 +99,14 @@ def draw_sensitivity(indices: dict[str, pd.DataFrame]):
     return fig
 
 
-def draw_harp_confidence(residuals: pd.DataFrame, transfers: pd.DataFrame, text_std_km: dict):
+def draw_harp_confidence(
+    residuals: pd.DataFrame, transfers: pd.DataFrame, text_std_km: dict, text_mean_km: dict
+):
     """Figure X.5: (a) each site's residual mean and standard deviation with 95 % bootstrap
-    intervals, the text's standard deviations as grey crosses; (b) the mean residual of one
+    intervals, the text's values as grey crosses; (b) the mean residual of one
     site's rounds predicted with the drag area fitted at the other, with the text's densities
-    and with each site's density following its Mach-column temperature."""
+    and with each site's density following its Mach-column temperature; the text's mean
+    residual of a site (``text_mean_km``, where it gives one with its sign) as a grey cross."""
     fig, (stats, transfer) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 3.4))
     measured = style("measured")
     for y, ((site, statistic), row) in enumerate(residuals.iterrows()):
@@ -116,8 +119,9 @@ def draw_harp_confidence(residuals: pd.DataFrame, transfers: pd.DataFrame, text_
             capsize=3,
             linestyle="none",
         )
-        if statistic == "std":
-            stats.plot(text_std_km[site], y, markersize=9, mew=1.6, zorder=5, **style("text"))
+        text = (text_std_km if statistic == "std" else text_mean_km).get(site)
+        if text is not None:
+            stats.plot(text, y, markersize=9, mew=1.6, zorder=5, **style("text"))
     stats.set_yticks(range(len(residuals)), [f"{s.capitalize()}, {t}" for s, t in residuals.index])
     stats.axvline(0.0, color=OKABE_ITO["grey"], lw=0.8)
     stats.invert_yaxis()
@@ -142,6 +146,10 @@ def draw_harp_confidence(residuals: pd.DataFrame, transfers: pd.DataFrame, text_
         + ("text's air" if r.densities == "site" else "air from Mach")
         for r in transfers.itertuples()
     ]
+    for y, row in enumerate(transfers.itertuples()):
+        if row.predict_site in text_mean_km:
+            transfer.plot(text_mean_km[row.predict_site], y, markersize=9, mew=1.6, zorder=5,
+                          **style("text"))  # fmt: skip
     transfer.set_yticks(range(len(transfers)), labels, fontsize=8)
     transfer.axvline(0.0, color=OKABE_ITO["grey"], lw=0.8)
     transfer.invert_yaxis()
@@ -208,7 +216,7 @@ def draw_error_maps(error_map: pd.DataFrame, share_range: tuple[float, float]):
             ax = axes[row, column]
             ratio = np.log10(grid[f"improved_{measure}"] / grid[f"dissertation_{measure}"])
             image = ax.pcolormesh(bearings, elevations, ratio.to_numpy(), cmap="PuOr_r",
-                                  vmin=-1.5, vmax=1.5, shading="nearest")  # fmt: skip
+                                  vmin=-2.1, vmax=2.1, shading="nearest")  # fmt: skip
             if np.nanmin(ratio.to_numpy()) < 0 < np.nanmax(ratio.to_numpy()):
                 ax.contour(bearings, elevations, ratio.to_numpy(), levels=[0.0],
                            colors=OKABE_ITO["black"], linewidths=1.0)  # fmt: skip
@@ -218,8 +226,7 @@ def draw_error_maps(error_map: pd.DataFrame, share_range: tuple[float, float]):
             ax.plot(bearings[missing[:, 1]], elevations[missing[:, 0]], "x",
                     color=OKABE_ITO["black"], markersize=4)  # fmt: skip
             ax.grid(False)
-            ax.set_xticks([0, 180])
-            ax.set_xticks([90, 270], minor=True)
+            ax.set_xticks([0, 90, 180, 270], ["0", "90", "180", "270"], fontsize=6.5)
             if row == 0:
                 ax.set_title(f"latitude {latitude:g}°", fontsize=8.5)
             if row == 1:

@@ -92,13 +92,15 @@ CHAPTER_7B = (
         "muzzle speed",
         "speed_m_s",
         harp.SPEED_STEP_FT_S * FOOT_M,
-        "one step of the HARP muzzle-speed records, 10 ft/s (Ch. 6, Appendices D-E)",
+        "assumed: one step of the HARP muzzle-speed records, 10 ft/s, as a gun's round-to-round "
+        "scatter (the records' own rounding is 10/sqrt(12) ft/s; HARP's scatter, Ch. 6, "
+        "implies more)",
     ),
     Uncertainty(
         "latitude",
         "latitude_deg",
         1.0 / 3600.0,
-        "the resolution of the text's site coordinates, 1 arc second (Ch. 6 C)",
+        "the resolution of the text's site coordinates, 1 arc second (Ch. 6 C), as 1 sd",
     ),
     Uncertainty("fire time", "fire_time_s", 1e-3, "assumed: 1 ms (the text gives none)"),
     Uncertainty(
@@ -328,9 +330,9 @@ def dispersion(
 ) -> pd.Series:
     """The 3DOF's spread (m) for ``launch`` under ``uncertainties``, from ``samples`` flights
     (in chunks of ``chunk``, through :func:`~harp_analysis.sweeps.sweep`, on ``client``'s
-    cluster if given): the apogee's standard deviation, the root-mean-square distance of the
-    impact point and of the position at the nominal apogee time from the nominal flight's, and
-    the standard deviation of each of :data:`OUTPUTS` (``sd_<output>_m``)."""
+    cluster if given): the root-mean-square distance of the apogee altitude, the impact point
+    and the position at the nominal apogee time from the nominal flight's, and the standard
+    deviation of each of :data:`OUTPUTS` (``sd_<output>_m``)."""
     uncertainties = _check_uncertainties(uncertainties)
     check_choice(method, "method", SAMPLING_METHODS)
     if not uncertainties:
@@ -351,7 +353,7 @@ def dispersion(
         return math.sqrt(variance[columns].sum() + offset[columns] @ offset[columns])
 
     result = {
-        "apogee_m": math.sqrt(variance[0]),
+        "apogee_m": rms(slice(0, 1)),
         "impact_m": rms(slice(1, 4)),
         "position_m": rms(slice(4, 7)),
     }
@@ -508,9 +510,9 @@ def dispersion_over_model_error(output: str = "impact") -> float:
 
 
 def harp_spread_over_model_error(site: str = "barbados") -> float:
-    """The standard deviation of ``site``'s HARP apogee residuals (the dissertation model) over
-    the ECI MKS's apogee error against the 3DOF for the representative Martlet round at
-    Barbados (:func:`martlet_at_barbados`): how much larger the experimental spread is than the
-    MKS's own error (Ch. 4 A)."""
-    spread_m = 1e3 * harp.residual_statistic(site, statistic="std")  # the text's 23 rows
+    """The standard deviation of ``site``'s HARP apogee residuals (the dissertation model, the
+    distinct rounds) over the ECI MKS's apogee error against the 3DOF for the representative
+    Martlet round at Barbados (:func:`martlet_at_barbados`): how much larger the experimental
+    spread is than the MKS's own error (Ch. 4 A)."""
+    spread_m = 1e3 * harp.residual_statistic(site, "std", include_duplicate=False)
     return float(spread_m / model_error(martlet_at_barbados())["apogee_m"])

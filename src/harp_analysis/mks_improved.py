@@ -60,7 +60,6 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from . import earth, eci, mks
-from .atmosphere import get_atmosphere
 from .launch import Launch
 from .trajectory import launch_frame, rotate_about_axis, surface_ranges
 from .validation import ModelValidityWarning, check_range, finite_array, finite_scalar
@@ -81,7 +80,8 @@ __all__ = [
 #: Outside this band of the air's share in the launch's angular momentum
 #: (:func:`air_momentum_share`) the improved MKS warns: on the error map (bearing x elevation x
 #: latitude, :func:`harp_analysis.mks_improvement.error_map`) it misses the impact by more than
-#: the dissertation's at every point outside it.
+#: the dissertation's at every point outside it. The band was drawn from that same map, so the
+#: map's share of better points inside it is not an independent test.
 AIR_MOMENTUM_SHARE_RANGE = (-0.5, 1.0)
 #: Where the loss integrals stop: above 100 km eqs 2.1-2.2's density is 3e-7 kg/m^3 and what
 #: is left of the loss, rho H Cd A/(2m), is below 1e-8 of h.
@@ -144,13 +144,14 @@ def _plane(ascent: mks.ModifiedKeplerSolution, correction, latitude_rad) -> _Pla
 
 
 class _Air:
-    """What the loss rate needs of a launch: drag per density, air, drag law, Earth rotation."""
+    """What the loss rate needs of a launch: drag per density, the launch's air on its day,
+    drag law, Earth rotation."""
 
     def __init__(self, launch: Launch, plane: _Plane):
         self.latitude_rad = launch.latitude_rad
         projectile = launch.projectile
         self.per_density = projectile.reference_area_m2 / (2 * projectile.mass_kg)
-        self.atmosphere = get_atmosphere(launch.atmosphere)
+        self.air = launch.air
         self.drag_law = projectile.drag_law
         self.omega = launch.rotation_rate_rad_s
         self.plane = plane
@@ -169,8 +170,9 @@ class _Air:
         along = omega * h * n_z
         air_speed = np.sqrt(np.maximum(speed_squared - 2 * along + air_squared, 0.0))
         across = np.sqrt(np.maximum(air_squared - along**2 / speed_squared, 0.0))
-        mach = air_speed / self.atmosphere.speed_of_sound(altitude)
-        per_time = self.per_density * self.atmosphere.density(altitude) * self.drag_law(mach)
+        density, sound = self.air(altitude)
+        mach = air_speed / sound
+        per_time = self.per_density * density * self.drag_law(mach)
         per_time *= air_speed * r**2 / h  # times dt/dtheta
         return per_time * (1 - omega * n_z * r**2 / h), per_time * across
 
