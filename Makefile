@@ -8,7 +8,7 @@ STAMP := $(VENV)/.installed
 
 KERNELS := $(VENV)/.kernels
 
-.PHONY: figures test lint benchmark clean-venv
+.PHONY: figures test lint benchmark explore check-browser clean-venv
 
 $(STAMP): environment.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -43,6 +43,16 @@ test: lint $(KERNELS)
 	scratch="$$(mktemp -d)" && \
 	HARP_ANALYSIS_FIGURES_DIR="$$scratch" $(BIN)/python -m pytest -n 2 --dist loadgroup tests --nbmake notebooks && \
 	HARP_ANALYSIS_REGENERATED_FIGURES="$$scratch" $(BIN)/python -m pytest -q tests/test_figure_images.py
+
+# The explorer (notebooks/00_explorer.ipynb) as a web page, served by Voila on this machine only.
+explore: $(KERNELS)
+	@echo "Explorer: http://127.0.0.1:8866/"
+	$(BIN)/voila notebooks/00_explorer.ipynb --no-browser --port=8866 --Voila.ip=127.0.0.1 \
+		--Voila.port_retries=0
+
+# Only the explorer's browser test; a missing chromium or chromium-driver fails it, never skips.
+check-browser: $(KERNELS)
+	HARP_ANALYSIS_REQUIRE_BROWSER=1 $(BIN)/python -m pytest -q tests/browser
 
 benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_atmosphere.py

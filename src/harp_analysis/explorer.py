@@ -1,0 +1,525 @@
+"""The explorer (notebook 00, and the web page of ``make explore``): one launch, set with
+controls, flown by the MKS and the 3DOF at once, the 6DOF and MLT on request.
+
+The logic lives here, the notebook only displays :class:`Explorer`: :class:`Settings` (what
+the controls hold, plain numbers), :func:`launch_for` (the :class:`~harp_analysis.launch.Launch`
+they describe, or a clear error), :func:`fly` (each engine's trajectory, its apogee, range and
+time of flight, its distance from the 3DOF at the same time, and the models' validity
+messages), :func:`draw` (the figure as PNG bytes) and the two HTML views. :class:`Explorer`
+lays them out as ipywidgets; every control change flies the launch again (the MKS and the 3DOF
+take milliseconds, drawing a tenth of a second), and bad input shows as a message, never as a
+traceback.
+
+The MKS here is the text's (Chapter 5's ECI MKS where the Earth turns,
+:func:`harp_analysis.mks_improved.dissertation`), the improved one on request; the HARP
+presets fly the Martlet as Chapter 6 models it (:func:`harp_analysis.harp.martlet`), with
+Yuma's thinner air as the day's density change.
+"""
+
+from __future__ import annotations
+
+import html
+import io
+import math
+import warnings
+from dataclasses import dataclass, replace
+
+import matplotlib
+import numpy as np
+import pandas as pd
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+from . import earth, harp, mks, mks_improved, mks_improvement, mlt, sixdof, threedof
+from .atmosphere import ATMOSPHERE_NAMES, SEA_LEVEL_DENSITY_KG_M3
+from .drag import ExponentialDragLaw
+from .launch import HP_CHAPTER_2, LP_CHAPTER_2, Launch, baseline_chapter_4
+from .plotting import HOUSE_STYLE, OKABE_ITO, style
+from .projectiles import BASELINE, HP, LP, Projectile
+from .sites import get_site
+from .trajectory import launch_frame, rotate_about_axis, surface_ranges
+
+__all__ = [
+    "PROJECTILES",
+    "ENGINES",
+    "Settings",
+    "Flown",
+    "presets",
+    "launch_for",
+    "fly",
+    "draw",
+    "summary_html",
+    "messages_html",
+    "Explorer",
+]
+
+PROJECTILES = ("HP", "LP", "baseline", "Martlet", "custom")
+#: The engines in the order they are drawn: the MKS and the 3DOF always, the rest on request.
+ENGINES = ("3DOF", "MKS", "improved MKS", "6DOF", "MLT")
+_NAMED = {"HP": HP, "LP": LP, "baseline": BASELINE}
+_DRAW_DPI = 90
+
+
+@dataclass(frozen=True)
+class Settings:
+    """What the explorer's controls hold (SI, angles in degrees). ``mass_kg``, ``diameter_m``
+    and ``drag_area_m2`` (Cd0 A) describe the Martlet (mass only) and a custom projectile;
+    ``measured_apogee_m`` is a HARP round's, shown beside the engines'."""
+
+    projectile: str = "HP"
+    speed_m_s: float = HP.launch_speed_m_s
+    elevation_deg: float = 50.0
+    bearing_deg: float = 90.0
+    latitude_deg: float = 0.0
+    rotating: bool = False
+    cross_wind_m_s: float = 0.0
+    head_wind_m_s: float = 0.0
+    atmosphere: str = "two_segment"
+    density_change_percent: float = 0.0
+    temperature_change_k: float = 0.0
+    spin_rad_s: float = 0.0
+    mass_kg: float = 80.0
+    diameter_m: float = 0.1
+    drag_area_m2: float = 2.5e-3
+    improved_mks: bool = False
+    measured_apogee_m: float | None = None
+
+
+def _from_launch(launch: Launch, projectile: str, **extra) -> Settings:
+    return Settings(
+        projectile=projectile,
+        speed_m_s=launch.speed_m_s,
+        elevation_deg=launch.elevation_deg,
+        bearing_deg=launch.bearing_deg,
+        latitude_deg=launch.latitude_deg,
+        rotating=launch.rotation_rate_rad_s != 0.0,
+        cross_wind_m_s=launch.cross_wind_m_s,
+        head_wind_m_s=launch.head_wind_m_s,
+        atmosphere=launch.atmosphere,
+        spin_rad_s=launch.spin_rad_s,
+        mass_kg=launch.projectile.mass_kg,
+        **extra,
+    )
+
+
+def _harp_round(site: str, round_number: int) -> Settings:
+    """A HARP round as Chapter 6 flies it: the Martlet of the round's mass and muzzle speed at
+    85 deg on the site's bearing and latitude, the Earth turning, the site's surface density as
+    the day's change of the 1.225 kg/m^3 sea-level air."""
+    launch_site = get_site(site)
+    rounds = harp.appendix_rounds(site)
+    row = rounds[rounds.round_number == round_number].iloc[0]
+    density_change = launch_site.surface_density_kg_m3 / SEA_LEVEL_DENSITY_KG_M3 - 1.0
+    return Settings(
+        projectile="Martlet",
+        speed_m_s=float(row.muzzle_speed_m_s),
+        elevation_deg=math.degrees(launch_site.elevation_rad),
+        bearing_deg=math.degrees(launch_site.gun_bearing_rad),
+        latitude_deg=math.degrees(launch_site.latitude_rad),
+        rotating=True,
+        density_change_percent=100.0 * density_change,
+        mass_kg=float(row.mass_kg),
+        measured_apogee_m=float(row.apogee_m),
+    )
+
+
+def presets() -> dict[str, Settings]:
+    """The dissertation's cases by name: Chapter 2 A's HP and LP, Chapter 4 B's baseline cone
+    at its four elevations, and every distinct HARP round of Appendices D and E."""
+    cases = {
+        "Chapter 2 A: HP": _from_launch(HP_CHAPTER_2, "HP"),
+        "Chapter 2 A: LP": _from_launch(LP_CHAPTER_2, "LP"),
+    }
+    for elevation in (30.0, 45.0, 65.0, 85.0):
+        cases[f"Chapter 4 B: baseline, {elevation:g} deg"] = _from_launch(
+            baseline_chapter_4(elevation), "baseline"
+        )
+    for site in ("barbados", "yuma"):
+        rounds = harp.appendix_rounds(site)
+        for number in rounds.round_number[~rounds.duplicate_of_earlier_row]:
+            name = f"HARP {get_site(site).name}: round {number}"
+            cases[name] = _harp_round(site, int(number))
+    return cases
+
+
+def _projectile(settings: Settings) -> Projectile:
+    if settings.projectile in _NAMED:
+        return _NAMED[settings.projectile]
+    if settings.projectile == "Martlet":
+        return harp.martlet(settings.mass_kg, settings.speed_m_s)
+    if settings.projectile == "custom":
+        area = math.pi * settings.diameter_m**2 / 4 if settings.diameter_m > 0 else math.nan
+        if not area > 0:
+            raise ValueError(f"diameter must be positive; got {settings.diameter_m:g} m")
+        return Projectile(
+            "custom",
+            settings.mass_kg,
+            area,
+            ExponentialDragLaw(0.0, 0.0, settings.drag_area_m2 / area),  # Cd0 A / A, constant
+            settings.speed_m_s,
+            "the explorer's custom projectile: constant Cd0 A",
+            diameter_m=settings.diameter_m,
+        )
+    raise ValueError(f"projectile must be one of {', '.join(PROJECTILES)}")
+
+
+def launch_for(settings: Settings) -> Launch:
+    """The launch the controls describe; ValueError or TypeError naming what is wrong."""
+    return Launch(
+        _projectile(settings),
+        settings.speed_m_s,
+        settings.elevation_deg,
+        bearing_deg=settings.bearing_deg % 360.0,
+        latitude_deg=settings.latitude_deg,
+        cross_wind_m_s=settings.cross_wind_m_s,
+        head_wind_m_s=settings.head_wind_m_s,
+        spin_rad_s=settings.spin_rad_s,
+        atmosphere=settings.atmosphere,
+        rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S if settings.rotating else 0.0,
+        density_change_fraction=settings.density_change_percent / 100.0,
+        temperature_change_k=settings.temperature_change_k,
+    )
+
+
+# --- flying ---------------------------------------------------------------------------------
+@dataclass
+class Flown:
+    """One engine's flight of the launch: its path (time, ground range, altitude; m, s), its
+    apogee, range and time of flight, and its distance from the 3DOF at the same times."""
+
+    engine: str
+    path: pd.DataFrame
+    apogee_m: float
+    apogee_time_s: float
+    range_m: float
+    time_of_flight_s: float
+    error_to_3dof: pd.DataFrame | None = None  # time_s, distance_m
+    beta: float | None = None  # the MKS's (eq 3.22, with Chapter 5's decay scale)
+
+
+def _from_table(engine: str, table: pd.DataFrame) -> Flown:
+    attrs = table.attrs
+    return Flown(
+        engine,
+        table[["time_s", "ground_range_m", "altitude_m"]].reset_index(drop=True),
+        attrs["apogee_altitude_m"],
+        attrs["apogee_time_s"],
+        attrs["range_m"],
+        attrs["time_of_flight_s"],
+    )
+
+
+def _mks(engine: str, launch: Launch, three: pd.DataFrame) -> Flown:
+    """The text's or the improved MKS, sampled in time, with its distance from the 3DOF."""
+    if engine == "MKS":
+        solution = mks_improved.dissertation(launch)
+    else:
+        solution = mks_improved.solve(launch, mks_improvement.calibration())
+    if not math.isfinite(solution.impact_time_s):
+        raise ValueError("its asymptotic orbit escapes: there is no apogee or impact")
+    times = np.linspace(0.0, solution.impact_time_s, 400)
+    inertial = solution.positions(times)
+    fixed = rotate_about_axis(inertial.T, -launch.rotation_rate_rad_s * times).T
+    up, downrange = _launch_axes(launch)
+    ground, _ = surface_ranges(fixed, up, downrange)
+    path = pd.DataFrame(
+        {
+            "time_s": times,
+            "ground_range_m": ground,
+            "altitude_m": np.linalg.norm(inertial, axis=1) - earth.RADIUS_M,
+        }
+    )
+    both = three[three.time_s <= solution.impact_time_s]
+    distance = np.linalg.norm(
+        both[["x_m", "y_m", "z_m"]].to_numpy() - solution.positions(both.time_s.to_numpy()),
+        axis=1,
+    )
+    return Flown(
+        engine,
+        path,
+        solution.apogee_altitude_m,
+        solution.apogee_time_s,
+        solution.impact_range_m[0],
+        solution.impact_time_s,
+        pd.DataFrame({"time_s": both.time_s.to_numpy(), "distance_m": distance}),
+        float(solution.ascent.beta[0, 0] * solution.ascent.decay_scale[0, 0]),
+    )
+
+
+def _launch_axes(launch: Launch) -> tuple[np.ndarray, np.ndarray]:
+    up, downrange, _ = launch_frame(
+        launch.latitude_rad, math.radians(launch.longitude_deg), launch.bearing_rad
+    )
+    return np.ravel(up), np.ravel(downrange)
+
+
+_RIGID_BODY = {
+    "6DOF": lambda launch: sixdof.simulate_6dof(launch),
+    "MLT": lambda launch: mlt.simulate_mlt(launch),
+}
+
+
+def fly(launch: Launch, engines=("3DOF", "MKS")) -> tuple[dict[str, Flown], list[str]]:
+    """Each of ``engines`` (:data:`ENGINES`; the 3DOF always, as the reference) flown on
+    ``launch``, and the messages for the reader: every validity warning the engines raise,
+    whether the flight leaves the sensible atmosphere, and why an engine could not fly it."""
+    flown: dict[str, Flown] = {}
+    messages: list[str] = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        three = threedof.simulate_3dof(launch, output_step_s=0.5)
+        flown["3DOF"] = _from_table("3DOF", three)
+        for engine in engines:
+            if engine == "3DOF":
+                continue
+            if engine not in ENGINES:
+                raise ValueError(f"engines must be among {', '.join(ENGINES)}; got {engine!r}")
+            try:
+                if engine in _RIGID_BODY:
+                    flown[engine] = _from_table(engine, _RIGID_BODY[engine](launch))
+                else:
+                    flown[engine] = _mks(engine, launch, three)
+            except (ValueError, TypeError, ArithmeticError) as error:
+                messages.append(f"The {engine} cannot fly this launch: {error}")
+    for warning in caught:
+        text = str(warning.message)
+        if text not in messages:
+            messages.append(text)
+    beta = flown["MKS"].beta if "MKS" in flown else None
+    if beta is not None and beta > mks.BETA_VALIDITY_LIMIT:
+        messages.append(
+            f"MKS beta = {beta:.3f} > {mks.BETA_VALIDITY_LIMIT:g}: the text finds the solution "
+            "inaccurate for such high-drag projectiles (Chapter 4 B)."
+        )
+    apogee = flown["3DOF"].apogee_m
+    if apogee < mks.SENSIBLE_ATMOSPHERE_M:
+        messages.append(
+            f"The flight never leaves the sensible atmosphere (3DOF apogee {apogee / 1e3:.1f} km, "
+            f"below {mks.SENSIBLE_ATMOSPHERE_M / 1e3:g} km): the MKS assumes a flight that "
+            "spends most of its time above the air (Chapter 3 B)."
+        )
+    return flown, messages
+
+
+# --- the views ------------------------------------------------------------------------------
+def draw(flown: dict[str, Flown]) -> bytes:
+    """PNG of the altitude against ground range of every engine, and each MKS's distance
+    from the 3DOF at the same time along the flight."""
+    with matplotlib.rc_context(HOUSE_STYLE):  # type: ignore[arg-type]  # keys checked at run time
+        figure = Figure(figsize=(9.0, 3.6))
+        FigureCanvasAgg(figure)
+        path_axes, error_axes = figure.subplots(1, 2)
+        for engine in ENGINES:
+            if engine not in flown:
+                continue
+            one = flown[engine]
+            look = style(engine)
+            path_axes.plot(
+                one.path.ground_range_m / 1e3, one.path.altitude_m / 1e3, label=engine, **look
+            )
+            if one.error_to_3dof is not None:
+                error_axes.plot(
+                    one.error_to_3dof.time_s,
+                    one.error_to_3dof.distance_m / 1e3,
+                    label=f"{engine} - 3DOF",
+                    **look,
+                )
+        path_axes.set_xlabel("ground range (km)")
+        path_axes.set_ylabel("altitude (km)")
+        path_axes.set_ylim(bottom=0.0)
+        path_axes.legend(loc="upper right", fontsize=8)
+        error_axes.set_xlabel("time (s)")
+        error_axes.set_ylabel("distance from the 3DOF (km)")
+        if error_axes.lines:
+            error_axes.legend(loc="upper left", fontsize=8)
+        else:
+            error_axes.text(
+                0.5,
+                0.5,
+                "no MKS to compare",
+                ha="center",
+                transform=error_axes.transAxes,
+                color=OKABE_ITO["grey"],
+            )
+        figure.tight_layout()
+        buffer = io.BytesIO()
+        figure.savefig(buffer, format="png", dpi=_DRAW_DPI)
+    return buffer.getvalue()
+
+
+def summary_html(flown: dict[str, Flown], measured_apogee_m: float | None = None) -> str:
+    """The numbers as an HTML table: apogee, its time, range and time of flight per engine
+    (and a HARP round's measured apogee, as printed), to the metre and the tenth of a second."""
+    rows = "".join(
+        f"<tr><td>{engine}</td><td>{one.apogee_m / 1e3:.3f}</td><td>{one.apogee_time_s:.1f}</td>"
+        f"<td>{one.range_m / 1e3:.3f}</td><td>{one.time_of_flight_s:.1f}</td></tr>"
+        for engine in ENGINES
+        if (one := flown.get(engine)) is not None
+    )
+    if measured_apogee_m is not None:
+        rows += f"<tr><td>measured (HARP)</td><td>{measured_apogee_m / 1e3:.2f}</td>" + (
+            "<td></td>" * 3 + "</tr>"
+        )
+    return (
+        "<table><thead><tr><th>engine</th><th>apogee (km)</th><th>at (s)</th>"
+        "<th>range (km)</th><th>time of flight (s)</th></tr></thead>"
+        f"<tbody>{rows}</tbody></table>"
+    )
+
+
+def messages_html(messages: list[str]) -> str:
+    """The messages as an HTML list (escaped), or a note that there are none."""
+    if not messages:
+        return "<p>No validity warnings.</p>"
+    items = "".join(f"<li>{html.escape(text)}</li>" for text in messages)
+    return f"<ul>{items}</ul>"
+
+
+# --- the widgets ----------------------------------------------------------------------------
+class Explorer:
+    """The explorer's widgets (``.widget``), their controls by the :class:`Settings` field they
+    set (``.controls``), and its views: ``.plot`` (an Image), ``.summary`` and ``.messages``
+    (HTML). Every control flies the launch again; ``.rigid_body`` (a button) adds the 6DOF and
+    MLT to the current launch. CSS classes ``harp-*`` name the parts for a browser."""
+
+    def __init__(self, preset: str = "Chapter 2 A: HP"):
+        import ipywidgets as w
+
+        self._presets = presets()
+        self._holding = False
+        self._rigid_body = False
+        self.settings = self._presets[preset]
+        self.last_flown: dict[str, Flown] = {}
+        layout = dict(style={"description_width": "150px"}, layout=w.Layout(width="380px"))
+        slider = dict(continuous_update=True, **layout)
+        self.preset = w.Dropdown(
+            options=["(your own)", *self._presets],
+            value=preset,
+            description="dissertation case",
+            **layout,
+        )
+        self.controls = {
+            "projectile": w.Dropdown(options=PROJECTILES, description="projectile", **layout),
+            "speed_m_s": w.FloatSlider(
+                min=200, max=4000, step=1, description="muzzle speed (m/s)", **slider
+            ),
+            "elevation_deg": w.FloatSlider(
+                min=1, max=89.5, step=0.5, description="elevation (deg)", **slider
+            ),
+            "bearing_deg": w.FloatSlider(
+                min=0, max=359, step=1, description="bearing (deg T)", **slider
+            ),
+            "latitude_deg": w.FloatSlider(
+                min=-89, max=89, step=0.1, description="latitude (deg)", **slider
+            ),
+            "rotating": w.Checkbox(description="the Earth turns", **layout),
+            "cross_wind_m_s": w.FloatSlider(
+                min=-30, max=30, step=0.5, description="cross wind (m/s)", **slider
+            ),
+            "head_wind_m_s": w.FloatSlider(
+                min=-30, max=30, step=0.5, description="head wind (m/s)", **slider
+            ),
+            "atmosphere": w.Dropdown(options=ATMOSPHERE_NAMES, description="atmosphere", **layout),
+            "density_change_percent": w.FloatSlider(
+                min=-20, max=20, step=0.5, description="day's density (%)", **slider
+            ),
+            "temperature_change_k": w.FloatSlider(
+                min=-30, max=30, step=1, description="day's temperature (K)", **slider
+            ),
+            "spin_rad_s": w.FloatText(description="spin (rad/s)", **layout),
+            "mass_kg": w.FloatText(description="mass (kg)", **layout),
+            "diameter_m": w.FloatText(description="diameter (m)", **layout),
+            "drag_area_m2": w.FloatText(description="Cd0 A (m^2)", **layout),
+            "improved_mks": w.Checkbox(description="also the improved MKS", **layout),
+        }
+        self.rigid_body = w.Button(
+            description="fly the 6DOF and MLT too", layout=w.Layout(width="380px")
+        )
+        self.plot = w.Image(format="png")
+        self.summary = w.HTML()
+        self.messages = w.HTML()
+        for widget, name in (
+            (self.preset, "preset"),
+            (self.controls["elevation_deg"], "elevation"),
+            (self.plot, "plot"),
+            (self.summary, "summary"),
+            (self.messages, "messages"),
+            (self.rigid_body, "rigid-body"),
+        ):
+            widget.add_class(f"harp-{name}")
+        self._show(self.settings)
+        for control in self.controls.values():
+            control.observe(self._changed, names="value")
+        self.preset.observe(self._preset_chosen, names="value")
+        self.rigid_body.on_click(self._fly_rigid_body)
+        controls = w.VBox([self.preset, *self.controls.values(), self.rigid_body])
+        views = w.VBox([self.plot, self.summary, self.messages])
+        self.widget = w.HBox([controls, views])
+        self.widget.add_class("harp-explorer")
+        self.update()
+
+    # what the controls show and hold
+    def _show(self, settings: Settings) -> None:
+        self._holding = True
+        try:
+            for name, control in self.controls.items():
+                control.value = getattr(settings, name)
+            custom = settings.projectile == "custom"
+            self.controls["diameter_m"].disabled = not custom
+            self.controls["drag_area_m2"].disabled = not custom
+            self.controls["mass_kg"].disabled = settings.projectile not in ("custom", "Martlet")
+        finally:
+            self._holding = False
+
+    def _read(self) -> Settings:
+        values = {name: control.value for name, control in self.controls.items()}
+        measured = self.settings.measured_apogee_m if self.preset.value in self._presets else None
+        return replace(self.settings, **values, measured_apogee_m=measured)
+
+    def _changed(self, change) -> None:
+        if self._holding:
+            return
+        if change["owner"] is self.controls["projectile"]:
+            named = _NAMED.get(change["new"])
+            mass = named.mass_kg if named else self.settings.mass_kg
+            self._show(replace(self._read(), mass_kg=mass))
+        self._holding = True
+        try:
+            self.preset.value = "(your own)"  # the controls no longer show a dissertation case
+        finally:
+            self._holding = False
+        self._rigid_body = False
+        self.update()
+
+    def _preset_chosen(self, change) -> None:
+        if self._holding or change["new"] not in self._presets:
+            return
+        self.settings = self._presets[change["new"]]
+        self._show(self.settings)
+        self._rigid_body = False
+        self.update()
+
+    def _fly_rigid_body(self, _button=None) -> None:
+        self._rigid_body = True
+        self.update()
+
+    def update(self) -> None:
+        """Fly the launch the controls describe and show it; a message, never a traceback."""
+        self.settings = self._read()
+        engines = ["3DOF", "MKS"]
+        if self.settings.improved_mks:
+            engines.append("improved MKS")
+        if self._rigid_body:
+            engines += ["6DOF", "MLT"]
+        try:
+            launch = launch_for(self.settings)
+            flown, messages = fly(launch, engines)
+        except (ValueError, TypeError, ArithmeticError) as error:
+            self.last_flown = {}
+            self.summary.value = ""
+            self.messages.value = messages_html([f"This launch cannot be flown: {error}"])
+            return
+        self.last_flown = flown
+        self.plot.value = draw(flown)
+        self.summary.value = summary_html(flown, self.settings.measured_apogee_m)
+        self.messages.value = messages_html(messages)

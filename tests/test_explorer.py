@@ -1,0 +1,159 @@
+"""The explorer without a browser: set the controls as a reader would, check what the views
+show against the engines flown directly, and that bad input shows as a message.
+"""
+
+import math
+import re
+import warnings
+from functools import cache
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from harp_analysis import explorer, harp, mks, mks_improved, threedof
+from harp_analysis.launch import HP_CHAPTER_2, Launch
+from harp_analysis.projectiles import HP
+
+
+def _numbers(summary: str) -> dict[str, list[float]]:
+    """The summary table's rows: engine -> apogee (km), its time, range (km), time of flight."""
+    rows = re.findall(r"<tr><td>([^<]+)</td>(.*?)</tr>", summary)
+    return {
+        engine: [float(v) for v in re.findall(r"<td>([-0-9.]+)</td>", cells)]
+        for engine, cells in rows
+    }
+
+
+def _direct(launch):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        three = threedof.simulate_3dof(launch).attrs
+        solution = mks_improved.dissertation(launch)
+    return three, solution
+
+
+@pytest.fixture(scope="module")
+def hp():
+    return explorer.Explorer("Chapter 2 A: HP")
+
+
+def test_opens_on_chapter_2s_hp_with_both_engines_numbers(hp):
+    three, solution = _direct(HP_CHAPTER_2)
+    numbers = _numbers(hp.summary.value)
+    assert numbers["3DOF"][0] == pytest.approx(three["apogee_altitude_m"] / 1e3, abs=5e-4)
+    assert numbers["3DOF"][2] == pytest.approx(three["range_m"] / 1e3, abs=5e-4)
+    assert numbers["MKS"][0] == pytest.approx(solution.apogee_altitude_m / 1e3, abs=5e-4)
+    assert numbers["MKS"][3] == pytest.approx(solution.impact_time_s, abs=0.05)
+    assert bytes(hp.plot.value[:4]) == b"\x89PNG"
+    messages = hp.messages.value
+    assert "cross_wind_m_s" in messages  # the MKS leaves Chapter 2's wind out
+    assert "beta = 0.275" in messages  # above the text's 0.25
+
+
+def test_a_moved_slider_flies_the_new_launch(hp):
+    before_plot, before = hp.plot.value, _numbers(hp.summary.value)
+    hp.controls["elevation_deg"].value = 62.0
+    after = _numbers(hp.summary.value)
+    assert bytes(hp.plot.value) != bytes(before_plot)
+    assert after["3DOF"][0] > before["3DOF"][0]  # steeper, higher
+    moved = Launch(HP, HP.launch_speed_m_s, 62.0, cross_wind_m_s=5.0, spin_rad_s=10.0)
+    three, _ = _direct(moved)
+    assert after["3DOF"][0] == pytest.approx(three["apogee_altitude_m"] / 1e3, abs=5e-4)
+    assert hp.preset.value == "(your own)"  # no longer the dissertation's case
+    hp.preset.value = "Chapter 2 A: HP"
+    assert hp.controls["elevation_deg"].value == 50.0
+    assert _numbers(hp.summary.value) == before
+
+
+def test_a_harp_round_flies_the_martlet_and_shows_the_measured_apogee():
+    presets = explorer.presets()
+    name = next(n for n in presets if n.startswith("HARP Yuma"))
+    view = explorer.Explorer(name)
+    setting = presets[name]
+    launch = explorer.launch_for(setting)
+    assert launch.projectile.reference_area_m2 == pytest.approx(harp.drag_area_m2())
+    assert launch.elevation_deg == 85.0 and launch.rotation_rate_rad_s > 0
+    # Yuma's 1.14 kg/m^3 as the day's change of the MKS's sea-level 1.225 kg/m^3
+    assert mks.gun_density_kg_m3(launch) == pytest.approx(1.14, rel=1e-12)
+    numbers = _numbers(view.summary.value)
+    assert numbers["measured (HARP)"][0] == pytest.approx(
+        setting.measured_apogee_m / 1e3, abs=0.005
+    )
+    assert abs(numbers["MKS"][0] - numbers["3DOF"][0]) < 5.0  # km: the MKS's home ground
+
+
+def test_a_custom_projectile_with_the_martlets_drag_flies_as_the_martlet():
+    """Only Cd0 A and the mass enter a point-mass flight with constant Cd: any diameter."""
+    martlet = explorer.launch_for(explorer.Settings(projectile="Martlet", mass_kg=83.0))
+    custom = explorer.launch_for(
+        explorer.Settings(
+            projectile="custom", mass_kg=83.0, diameter_m=0.37, drag_area_m2=harp.drag_area_m2()
+        )
+    )
+    a, b = threedof.fly_3dof(martlet), threedof.fly_3dof(custom)
+    assert a.apogee_altitude_m[0] == pytest.approx(b.apogee_altitude_m[0], rel=1e-8)
+
+
+def test_6dof_and_mlt_come_on_request_and_refuse_what_they_cannot_fly():
+    view = explorer.Explorer("Chapter 2 A: LP")
+    assert set(_numbers(view.summary.value)) == {"3DOF", "MKS"}
+    view.rigid_body.click()
+    numbers = _numbers(view.summary.value)
+    assert {"6DOF", "MLT"} <= set(numbers)
+    assert numbers["6DOF"][0] == pytest.approx(numbers["3DOF"][0], rel=0.01)
+    view.preset.value = "Chapter 4 B: baseline, 45 deg"  # a cone: no rigid-body data
+    view.rigid_body.click()
+    assert "cannot fly this launch" in view.messages.value
+    assert {"3DOF", "MKS"} <= set(_numbers(view.summary.value))
+
+
+@pytest.mark.parametrize(
+    "changes, says",
+    [
+        ({"projectile": "custom", "mass_kg": 0.0}, "mass_kg"),
+        ({"projectile": "custom", "diameter_m": -0.1}, "diameter"),
+        ({"speed_m_s": 300.0, "elevation_deg": 10.0}, "never leaves the sensible atmosphere"),
+    ],
+)
+def test_bad_input_is_a_message_never_a_traceback(changes, says):
+    view = explorer.Explorer("Chapter 4 B: baseline, 45 deg")
+    for name, value in changes.items():
+        view.controls[name].value = value
+    assert says in view.messages.value
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    speed=st.floats(200, 4000),
+    elevation=st.floats(1, 89.5),
+    bearing=st.floats(0, 359),
+    latitude=st.floats(-89, 89),
+    rotating=st.booleans(),
+    projectile=st.sampled_from(explorer.PROJECTILES),
+)
+def test_any_control_values_show_numbers_or_a_message(
+    speed, elevation, bearing, latitude, rotating, projectile
+):
+    view = _fuzzed()
+    for name, value in (
+        ("projectile", projectile),
+        ("speed_m_s", speed),
+        ("elevation_deg", elevation),
+        ("bearing_deg", bearing),
+        ("latitude_deg", latitude),
+        ("rotating", rotating),
+    ):
+        view.controls[name].value = value
+    assert "3DOF" in view.summary.value or "cannot be flown" in view.messages.value
+    assert math.isfinite(view.settings.speed_m_s)
+
+
+@cache
+def _fuzzed():
+    return explorer.Explorer("Chapter 4 B: baseline, 45 deg")
+
+
+def test_every_preset_is_a_launch():
+    for name, setting in explorer.presets().items():
+        assert isinstance(explorer.launch_for(setting), Launch), name
