@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pandas as pd
 from matplotlib.lines import Line2D
@@ -19,7 +21,9 @@ MISS_CLASSES = (
     (1e4, 1e5, "10 to 100 km", "^", "#4D4D4D"),
     (1e5, np.inf, "100 km or more", "D", OKABE_ITO["black"]),
 )
-_NONE = dict(marker="x", color=OKABE_ITO["grey"], linestyle="none", markersize=3.5, mew=0.7)
+_NONE: dict[str, Any] = dict(
+    marker="x", color=OKABE_ITO["grey"], linestyle="none", markersize=3.5, mew=0.7
+)
 
 
 def draw_miss_map(maps: pd.DataFrame, bearings_deg, root: str, site: str):
