@@ -59,6 +59,22 @@ def test_bootstrap_interval_of_a_standard_deviation_is_the_chi_square_interval()
     assert interval.high == pytest.approx(high, abs=0.25 * half)
 
 
+def test_bootstrap_interval_of_a_mean_covers_at_the_sites_sample_size():
+    """At the 22 rounds a site has, over 300 normal samples of 22: the 95 % BCa interval of the
+    mean covers the true mean about as often as it should. The bootstrap uses z and the plug-in
+    variance where the exact t interval is 1.09 times wider (module docstring), so its coverage
+    is about 93 %; 300 trials scatter a coverage by 1.5 % (1 sigma): 88-98 % is 3 sigma around
+    it."""
+    rng = np.random.default_rng(22)
+    covered = [
+        harp_confidence.bootstrap_interval(
+            rng.normal(0.0, 1.0, 22), "mean", resamples=FEW, seed=trial
+        ).contains_zero
+        for trial in range(300)
+    ]
+    assert 0.88 <= np.mean(covered) <= 0.98
+
+
 def test_bootstrap_is_deterministic_given_the_seed():
     first = harp_confidence.residual_interval_table(resamples=FEW, seed=3)
     again = harp_confidence.residual_interval_table(resamples=FEW, seed=3)
