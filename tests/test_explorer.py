@@ -11,7 +11,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from harp_analysis import explorer, harp, mks, mks_improved, threedof
+from harp_analysis import earth, explorer, harp, mks, mks_improved, mks_improvement, threedof
 from harp_analysis.launch import HP_CHAPTER_2, Launch
 from harp_analysis.projectiles import HP
 
@@ -113,6 +113,7 @@ def test_6dof_and_mlt_come_on_request_and_refuse_what_they_cannot_fly():
     [
         ({"projectile": "custom", "mass_kg": 0.0}, "mass_kg"),
         ({"projectile": "custom", "diameter_m": -0.1}, "diameter"),
+        ({"projectile": "custom", "drag_area_m2": -1e-3}, "Cd0 A must be zero or positive"),
         ({"speed_m_s": 300.0, "elevation_deg": 10.0}, "never leaves the sensible atmosphere"),
     ],
 )
@@ -121,6 +122,78 @@ def test_bad_input_is_a_message_never_a_traceback(changes, says):
     for name, value in changes.items():
         view.controls[name].value = value
     assert says in view.messages.value
+
+
+def test_a_launch_that_cannot_be_flown_leaves_nothing_of_the_last_one():
+    view = explorer.Explorer("Chapter 4 B: baseline, 45 deg")
+    view.controls["projectile"].value = "custom"
+    view.controls["mass_kg"].value = 0.0
+    assert view.summary.value == ""
+    assert bytes(view.plot.value) == explorer.draw({})
+
+
+def test_every_control_reaches_the_launch():
+    """Each control set away from its default, the explorer's launch is the one built
+    directly, field by field (a control that did not reach it would show here)."""
+    view = explorer.Explorer("Chapter 4 B: baseline, 45 deg")
+    values = {
+        "projectile": "custom",
+        "mass_kg": 40.0,
+        "diameter_m": 0.12,
+        "drag_area_m2": 3e-3,
+        "speed_m_s": 1800.0,
+        "elevation_deg": 55.0,
+        "bearing_deg": 200.0,
+        "latitude_deg": -35.0,
+        "rotating": True,
+        "cross_wind_m_s": 4.0,
+        "head_wind_m_s": -3.0,
+        "atmosphere": "us1976",
+        "density_change_percent": 5.0,
+        "temperature_change_k": -7.0,
+        "spin_rad_s": 12.0,
+    }
+    for name, value in values.items():
+        view.controls[name].value = value
+    launch = explorer.launch_for(view.settings)
+    assert launch.projectile.mass_kg == 40.0
+    area = math.pi * 0.12**2 / 4
+    assert launch.projectile.reference_area_m2 == pytest.approx(area)
+    assert launch.launch_drag_coefficient * area == pytest.approx(3e-3)
+    direct = Launch(
+        launch.projectile,
+        1800.0,
+        55.0,
+        bearing_deg=200.0,
+        latitude_deg=-35.0,
+        cross_wind_m_s=4.0,
+        head_wind_m_s=-3.0,
+        spin_rad_s=12.0,
+        atmosphere="us1976",
+        rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+        density_change_fraction=0.05,
+        temperature_change_k=-7.0,
+    )
+    assert launch == direct
+    three, _ = _direct(direct)
+    shown = _numbers(view.summary.value)["3DOF"]
+    assert shown[0] == pytest.approx(three["apogee_altitude_m"] / 1e3, abs=5e-4)
+
+
+def test_the_improved_mks_is_another_view_of_the_same_launch():
+    """Ticking it adds the improved MKS's row and keeps the case, its measured apogee and the
+    6DOF/MLT rows; a change of the launch drops the measured apogee."""
+    presets = explorer.presets()
+    name = next(n for n in presets if n.startswith("HARP Barbados"))
+    view = explorer.Explorer(name)
+    view.controls["improved_mks"].value = True
+    numbers = _numbers(view.summary.value)
+    assert {"3DOF", "MKS", "improved MKS", "measured (HARP)"} <= set(numbers)
+    assert view.preset.value == name
+    improved = mks_improved.solve(explorer.launch_for(view.settings), mks_improvement.calibration())
+    assert numbers["improved MKS"][0] == pytest.approx(improved.apogee_altitude_m / 1e3, abs=5e-4)
+    view.controls["elevation_deg"].value = 80.0
+    assert "measured (HARP)" not in _numbers(view.summary.value)
 
 
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])

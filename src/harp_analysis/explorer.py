@@ -23,6 +23,7 @@ import io
 import math
 import warnings
 from dataclasses import dataclass, replace
+from functools import cache
 
 import matplotlib
 import numpy as np
@@ -56,6 +57,17 @@ __all__ = [
 PROJECTILES = ("HP", "LP", "baseline", "Martlet", "custom")
 #: The engines in the order they are drawn: the MKS and the 3DOF always, the rest on request.
 ENGINES = ("3DOF", "MKS", "improved MKS", "6DOF", "MLT")
+#: Beyond this beta no MKS is shown: the three-term series of its driving function at launch,
+#: e^{-2 beta} (eq 3.30), is then 1 against 0.135 (at the text's 0.25, 3 % off).
+MKS_SHOWN_BETA = 1.0
+#: The atmosphere models as the control names them.
+ATMOSPHERE_LABELS = {
+    "us1976": "1976 US standard",
+    "two_segment": "eqs 2.1-2.2 (Ch. 2)",
+    "three_layer": "three layers (App. A)",
+    "exponential": "eq 3.11, k = 0.117/km",
+    "vacuum": "vacuum",
+}
 _NAMED = {"HP": HP, "LP": LP, "baseline": BASELINE}
 _DRAW_DPI = 90
 
@@ -142,6 +154,13 @@ def presets() -> dict[str, Settings]:
     return cases
 
 
+@cache
+def _typical_martlet_mass_kg() -> float:
+    """The median mass of the distinct Barbados rounds (Appendix D)."""
+    rounds = harp.appendix_rounds("barbados")
+    return float(rounds.mass_kg[~rounds.duplicate_of_earlier_row].median())
+
+
 def _projectile(settings: Settings) -> Projectile:
     if settings.projectile in _NAMED:
         return _NAMED[settings.projectile]
@@ -149,8 +168,15 @@ def _projectile(settings: Settings) -> Projectile:
         return harp.martlet(settings.mass_kg, settings.speed_m_s)
     if settings.projectile == "custom":
         area = math.pi * settings.diameter_m**2 / 4 if settings.diameter_m > 0 else math.nan
-        if not area > 0:
-            raise ValueError(f"diameter must be positive; got {settings.diameter_m:g} m")
+        if not 0 < area < math.inf:
+            raise ValueError(
+                f"the diameter must be positive and finite; got {settings.diameter_m:g} m"
+            )
+        if not 0 <= settings.drag_area_m2 < math.inf:
+            raise ValueError(
+                f"Cd0 A must be zero or positive and finite; got {settings.drag_area_m2:g} m^2 "
+                "(a negative one would push the round along)"
+            )
         return Projectile(
             "custom",
             settings.mass_kg,
@@ -281,12 +307,20 @@ def fly(launch: Launch, engines=("3DOF", "MKS")) -> tuple[dict[str, Flown], list
                     flown[engine] = _mks(engine, launch, three)
             except (ValueError, TypeError, ArithmeticError) as error:
                 messages.append(f"The {engine} cannot fly this launch: {error}")
-    for warning in caught:
+    for warning in caught:  # the models' own warnings, not numpy's arithmetic on the way
         text = str(warning.message)
-        if text not in messages:
+        if not issubclass(warning.category, RuntimeWarning) and text not in messages:
             messages.append(text)
     beta = flown["MKS"].beta if "MKS" in flown else None
-    if beta is not None and beta > mks.BETA_VALIDITY_LIMIT:
+    if beta is not None and beta > MKS_SHOWN_BETA:
+        for engine in ("MKS", "improved MKS"):
+            flown.pop(engine, None)
+        messages.append(
+            f"MKS beta = {beta:.2f}, far beyond the text's {mks.BETA_VALIDITY_LIMIT:g}: the "
+            "three-term series of the drag's driving function (eq 3.30) is off by a factor of "
+            "seven or more, so no MKS is shown."
+        )
+    elif beta is not None and beta > mks.BETA_VALIDITY_LIMIT:
         messages.append(
             f"MKS beta = {beta:.3f} > {mks.BETA_VALIDITY_LIMIT:g}: the text finds the solution "
             "inaccurate for such high-drag projectiles (Chapter 4 B)."
@@ -321,13 +355,23 @@ def draw(flown: dict[str, Flown]) -> bytes:
                 error_axes.plot(
                     one.error_to_3dof.time_s,
                     one.error_to_3dof.distance_m / 1e3,
-                    label=f"{engine} - 3DOF",
+                    label=f"{engine}'s distance",
                     **look,
                 )
         path_axes.set_xlabel("ground range (km)")
         path_axes.set_ylabel("altitude (km)")
         path_axes.set_ylim(bottom=0.0)
-        path_axes.legend(loc="upper right", fontsize=8)
+        if path_axes.lines:
+            path_axes.legend(loc="upper right", fontsize=8)
+        else:  # a launch that cannot be flown: nothing of an earlier one stays up
+            path_axes.text(
+                0.5,
+                0.5,
+                "nothing to draw: see the messages",
+                ha="center",
+                transform=path_axes.transAxes,
+                color=OKABE_ITO["grey"],
+            )
         error_axes.set_xlabel("time (s)")
         error_axes.set_ylabel("distance from the 3DOF (km)")
         if error_axes.lines:
@@ -361,7 +405,7 @@ def summary_html(flown: dict[str, Flown], measured_apogee_m: float | None = None
             "<td></td>" * 3 + "</tr>"
         )
     return (
-        "<table><thead><tr><th>engine</th><th>apogee (km)</th><th>at (s)</th>"
+        "<table><thead><tr><th>engine</th><th>apogee (km)</th><th>apogee time (s)</th>"
         "<th>range (km)</th><th>time of flight (s)</th></tr></thead>"
         f"<tbody>{rows}</tbody></table>"
     )
@@ -419,7 +463,11 @@ class Explorer:
             "head_wind_m_s": w.FloatSlider(
                 min=-30, max=30, step=0.5, description="head wind (m/s)", **slider
             ),
-            "atmosphere": w.Dropdown(options=ATMOSPHERE_NAMES, description="atmosphere", **layout),
+            "atmosphere": w.Dropdown(
+                options=[(ATMOSPHERE_LABELS.get(name, name), name) for name in ATMOSPHERE_NAMES],
+                description="atmosphere",
+                **layout,
+            ),
             "density_change_percent": w.FloatSlider(
                 min=-20, max=20, step=0.5, description="day's density (%)", **slider
             ),
@@ -448,8 +496,9 @@ class Explorer:
         ):
             widget.add_class(f"harp-{name}")
         self._show(self.settings)
-        for control in self.controls.values():
-            control.observe(self._changed, names="value")
+        for name, control in self.controls.items():
+            # the improved MKS is another view of the same launch, not another launch
+            control.observe(self.update if name == "improved_mks" else self._changed, names="value")
         self.preset.observe(self._preset_chosen, names="value")
         self.rigid_body.on_click(self._fly_rigid_body)
         controls = w.VBox([self.preset, *self.controls.values(), self.rigid_body])
@@ -468,6 +517,27 @@ class Explorer:
             self.controls["diameter_m"].disabled = not custom
             self.controls["drag_area_m2"].disabled = not custom
             self.controls["mass_kg"].disabled = settings.projectile not in ("custom", "Martlet")
+            self.rigid_body.disabled = settings.projectile not in ("HP", "LP")  # Appendix B's data
+        finally:
+            self._holding = False
+
+    def _describe(self, launch: Launch) -> None:
+        """Fill the fields a named projectile fixes (shown greyed out) with its values: mass,
+        diameter (the reference area's; 0 for the Martlet, whose the text does not give) and
+        Cd0 A at the launch Mach number. A custom projectile starts from them."""
+        if self.settings.projectile == "custom":
+            return
+        projectile = launch.projectile
+        diameter = projectile.diameter_m or math.sqrt(4 * projectile.reference_area_m2 / math.pi)
+        self._holding = True
+        try:
+            self.controls["mass_kg"].value = projectile.mass_kg
+            self.controls["diameter_m"].value = (
+                0.0 if self.settings.projectile == "Martlet" else diameter
+            )
+            self.controls["drag_area_m2"].value = (
+                launch.launch_drag_coefficient * projectile.reference_area_m2
+            )
         finally:
             self._holding = False
 
@@ -481,8 +551,16 @@ class Explorer:
             return
         if change["owner"] is self.controls["projectile"]:
             named = _NAMED.get(change["new"])
-            mass = named.mass_kg if named else self.settings.mass_kg
-            self._show(replace(self._read(), mass_kg=mass))
+            if named:
+                mass = named.mass_kg
+            elif change["new"] == "Martlet" and change["old"] in _NAMED:
+                mass = _typical_martlet_mass_kg()  # not an HP's 15.7 kg
+            else:
+                mass = self.settings.mass_kg
+            settings = replace(self._read(), mass_kg=mass)
+            if settings.diameter_m <= 0:  # from the Martlet, whose diameter the text lacks
+                settings = replace(settings, diameter_m=Settings.diameter_m)
+            self._show(settings)
         self._holding = True
         try:
             self.preset.value = "(your own)"  # the controls no longer show a dissertation case
@@ -494,7 +572,8 @@ class Explorer:
     def _preset_chosen(self, change) -> None:
         if self._holding or change["new"] not in self._presets:
             return
-        self.settings = self._presets[change["new"]]
+        improved = self.controls["improved_mks"].value  # a view the reader chose: kept
+        self.settings = replace(self._presets[change["new"]], improved_mks=improved)
         self._show(self.settings)
         self._rigid_body = False
         self.update()
@@ -503,12 +582,16 @@ class Explorer:
         self._rigid_body = True
         self.update()
 
-    def update(self) -> None:
+    def update(self, _change=None) -> None:
         """Fly the launch the controls describe and show it; a message, never a traceback."""
         self.settings = self._read()
         engines = ["3DOF", "MKS"]
         if self.settings.improved_mks:
             engines.append("improved MKS")
+            if not mks_improvement.calibration.cache_info().currsize:
+                self.messages.value = messages_html(
+                    ["Fitting the improved MKS on its training launches (once, a few seconds)."]
+                )
         if self._rigid_body:
             engines += ["6DOF", "MLT"]
         try:
@@ -516,9 +599,11 @@ class Explorer:
             flown, messages = fly(launch, engines)
         except (ValueError, TypeError, ArithmeticError) as error:
             self.last_flown = {}
+            self.plot.value = draw({})  # no trajectory of an earlier launch left standing
             self.summary.value = ""
             self.messages.value = messages_html([f"This launch cannot be flown: {error}"])
             return
+        self._describe(launch)
         self.last_flown = flown
         self.plot.value = draw(flown)
         self.summary.value = summary_html(flown, self.settings.measured_apogee_m)
