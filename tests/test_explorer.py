@@ -124,6 +124,14 @@ def test_bad_input_is_a_message_never_a_traceback(changes, says):
     assert says in view.messages.value
 
 
+def test_a_round_that_escapes_is_said_to():
+    """12 km/s is past the escape speed (11.2 km/s at the surface, before drag): no apogee."""
+    launch = explorer.launch_for(explorer.Settings(projectile="baseline", speed_m_s=12e3))
+    flown, messages = explorer.fly(launch)
+    assert not math.isfinite(flown["3DOF"].apogee_m)
+    assert any("reaches no apogee" in text for text in messages)
+
+
 def test_a_launch_that_cannot_be_flown_leaves_nothing_of_the_last_one():
     view = explorer.Explorer("Chapter 4 B: baseline, 45 deg")
     view.controls["projectile"].value = "custom"

@@ -326,7 +326,12 @@ def fly(launch: Launch, engines=("3DOF", "MKS")) -> tuple[dict[str, Flown], list
             "inaccurate for such high-drag projectiles (Chapter 4 B)."
         )
     apogee = flown["3DOF"].apogee_m
-    if apogee < mks.SENSIBLE_ATMOSPHERE_M:
+    if not math.isfinite(apogee):
+        messages.append(
+            "The 3DOF reaches no apogee within its time limit: at this speed the round escapes "
+            "the Earth or is still climbing; the MKS's numbers then describe an orbit, not a shot."
+        )
+    elif apogee < mks.SENSIBLE_ATMOSPHERE_M:
         messages.append(
             f"The flight never leaves the sensible atmosphere (3DOF apogee {apogee / 1e3:.1f} km, "
             f"below {mks.SENSIBLE_ATMOSPHERE_M / 1e3:g} km): the MKS assumes a flight that "
