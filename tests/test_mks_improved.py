@@ -216,3 +216,23 @@ def test_calibration_checks_its_factor(value):
         assert "reentry_scale" in str(error)
     else:
         assert math.isfinite(calibration.reentry_scale) and calibration.reentry_scale >= 0.0
+
+
+def test_map_shares_count_the_points_as_drawn():
+    """Four points: the improved MKS better at two (one inside the band), one unsolved."""
+    import pandas as pd
+
+    low, high = mks_improved.AIR_MOMENTUM_SHARE_RANGE
+    frame = pd.DataFrame(
+        {
+            "air_momentum_share": [0.0, 0.1, high + 1.0, low - 1.0],
+            "dissertation_impact_miss_m": [100.0, 100.0, 100.0, 100.0],
+            "improved_impact_miss_m": [50.0, 150.0, 50.0, np.nan],
+            "dissertation_max_error_m": [1.0, 1.0, 1.0, 1.0],
+            "improved_max_error_m": [2.0, 2.0, 2.0, 2.0],
+        }
+    )
+    shares = mks_improvement.map_shares(frame)
+    assert shares.points == 4 and shares.inside == 2 and shares.unsolved == 1
+    assert shares.better_impact_miss_m == 0.5 and shares.better_impact_miss_m_inside == 0.5
+    assert shares.better_max_error_m == 0.0

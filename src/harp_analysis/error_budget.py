@@ -43,7 +43,7 @@ from .projectiles import HP
 from .sites import BARBADOS
 from .sweeps import SAMPLING_METHODS, chunks, sample_chunk, sweep
 from .threedof import fly_3dof
-from .trajectory import rotate_about_axis
+from .trajectory import launch_frame, rotate_about_axis
 from .validation import check_choice, check_range, finite_scalar
 
 __all__ = [
@@ -209,11 +209,8 @@ def nominal(launch: Launch) -> tuple[np.ndarray, float, np.ndarray]:
 
 
 def _gun_position(launch: Launch) -> np.ndarray:
-    lat, lon = launch.latitude_rad, math.radians(launch.longitude_deg)
-    radius = earth.RADIUS_M + launch.site_altitude_m
-    return radius * np.array(
-        [math.cos(lat) * math.cos(lon), math.cos(lat) * math.sin(lon), math.sin(lat)]
-    )
+    up = launch_frame(launch.latitude_rad, math.radians(launch.longitude_deg), 0.0)[0]
+    return (earth.RADIUS_M + launch.site_altitude_m) * np.ravel(up)
 
 
 def _scalar_outputs(launch: Launch, outputs: np.ndarray) -> np.ndarray:

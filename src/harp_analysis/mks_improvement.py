@@ -51,7 +51,9 @@ __all__ = [
     "MAP_LATITUDES_DEG",
     "error_map",
     "impact_time_error_s",
+    "judged_rms",
     "judged_improvement",
+    "map_shares",
 ]
 
 _SPIN = earth.ROTATION_RATE_RAD_S
@@ -278,14 +280,36 @@ def impact_time_error_s(elevations_deg: tuple[float, ...] = BASELINE_ELEVATIONS_
     return float(np.median(np.abs(errors)))
 
 
-def judged_improvement(measure: str = "impact_miss_m", earth: str = "both") -> float:
-    """The root-mean-square of ``measure`` (a field of :class:`LaunchErrors`) over the judging
-    set, or its launches on the ``"turning"`` or ``"still"`` Earth, the improved MKS's over the
-    dissertation's: below 1, the improved one is better on launches it was not fitted to."""
-    check_choice(measure, "measure", tuple(LaunchErrors.__dataclass_fields__))
+def judged_rms(earth: str = "both") -> pd.DataFrame:
+    """The root-mean-square of each :class:`LaunchErrors` field over the judging set, or its
+    launches on the ``"turning"`` or ``"still"`` Earth: one row per variant."""
     check_choice(earth, "earth", ("both", "turning", "still"))
     judged = judge()
     if earth != "both":
         judged = judged[judged.rotating == (earth == "turning")]
-    rms = judged.groupby("variant")[measure].apply(lambda v: float(np.sqrt(np.mean(v**2))))
+    measures = list(LaunchErrors.__dataclass_fields__)
+    return judged.groupby("variant")[measures].agg(lambda v: float(np.sqrt(np.mean(v**2))))
+
+
+def judged_improvement(measure: str = "impact_miss_m", earth: str = "both") -> float:
+    """:func:`judged_rms` of ``measure``, the improved MKS's over the dissertation's: below 1,
+    the improved one is better on launches it was not fitted to."""
+    check_choice(measure, "measure", tuple(LaunchErrors.__dataclass_fields__))
+    rms = judged_rms(earth)[measure]
     return float(rms["improved"] / rms["dissertation"])
+
+
+def map_shares(error_map: pd.DataFrame) -> pd.Series:
+    """What :func:`error_map` says, as shares of its points: where the improved MKS has the
+    smaller impact miss and largest error, over all points and inside its validity band
+    (:data:`mks_improved.AIR_MOMENTUM_SHARE_RANGE`, drawn from this map), with the points inside
+    and those where it has no solution."""
+    low, high = mks_improved.AIR_MOMENTUM_SHARE_RANGE
+    inside = (error_map.air_momentum_share > low) & (error_map.air_momentum_share <= high)
+    shares: dict[str, float] = {"points": len(error_map), "inside": int(inside.sum())}
+    for measure in ("impact_miss_m", "max_error_m"):
+        better = error_map[f"improved_{measure}"] < error_map[f"dissertation_{measure}"]
+        shares[f"better_{measure}"] = float(better.mean())
+        shares[f"better_{measure}_inside"] = float(better[inside].mean())
+    shares["unsolved"] = int(error_map.improved_impact_miss_m.isna().sum())
+    return pd.Series(shares)
