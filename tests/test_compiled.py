@@ -90,6 +90,6 @@ def test_unknown_model_numbers_are_refused_in_compiled_code():
 
 def test_a_flight_that_cannot_be_integrated_raises_instead_of_looping():
     batch = threedof._batch([baseline_chapter_4(45.0)])
-    poisoned = batch._replace(y0=np.full_like(batch.y0, np.nan))
+    poisoned = batch._replace(columns=np.full_like(batch.columns, np.nan))
     with pytest.raises(FloatingPointError, match="could not integrate launch 0"):
         threedof._fly(poisoned, 3000.0, 1e-9, record=False)

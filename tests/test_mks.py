@@ -162,10 +162,15 @@ def test_sample_matches_the_individual_functions():
     assert table["flight_path_angle_rad"] == pytest.approx(solution.flight_path_angle(theta))
 
 
-@pytest.mark.parametrize("launch", ["HP", HP, 45.0, [], [baseline_chapter_4(45.0), "HP"]])
+@pytest.mark.parametrize("launch", ["HP", HP, 45.0, [baseline_chapter_4(45.0), "HP"]])
 def test_for_launch_takes_launches_only(launch):
     with pytest.raises(TypeError, match="Launch"):
         mks.for_launch(launch)
+
+
+def test_for_launch_refuses_no_launches():
+    with pytest.raises(ValueError, match="at least one Launch"):
+        mks.for_launch([])
 
 
 def test_for_launch_refuses_rotation_and_warns_for_wind():

@@ -44,7 +44,7 @@ import numpy as np
 
 from . import earth, mks
 from .atmosphere import TEXT_DECAY_CONSTANT_PER_M
-from .launch import Launch
+from .launch import Launch, Launches
 from .sites import get_site
 from .trajectory import launch_frame
 from .validation import check_choice, check_range, finite_array
@@ -461,16 +461,24 @@ def eci_solution(
     )
 
 
-def correction_for_launch(launch: Launch, model: str | EciModel = CONSISTENT) -> LaunchCorrection:
-    """:func:`launch_correction` of a :class:`~harp_analysis.launch.Launch`: its speed,
-    elevation, bearing and latitude, Cd0 A at the launch Mach, its mass, its air's density at
-    the gun and its Earth rotation. The ECI MKS is drag-only: a wind is ignored with a
-    warning; it launches from the Earth's surface (r0 = R)."""
-    if not isinstance(launch, Launch):
-        raise TypeError(f"launch must be a Launch; got {type(launch).__name__}")
+def correction_for_launch(
+    launch: Launch | Launches, model: str | EciModel = CONSISTENT
+) -> LaunchCorrection:
+    """:func:`launch_correction` of a :class:`~harp_analysis.launch.Launch` (or of
+    :class:`~harp_analysis.launch.Launches` sharing one Earth rotation, each launch a column):
+    its speed, elevation, bearing and latitude, Cd0 A at the launch Mach, its mass, its air's
+    density at the gun and its Earth rotation. The ECI MKS is drag-only: a wind is ignored
+    with a warning; it launches from the Earth's surface (r0 = R)."""
+    if not isinstance(launch, Launch | Launches):
+        raise TypeError(f"launch must be a Launch or Launches; got {type(launch).__name__}")
     launch.require_zero("ECI MKS", "site_altitude_m", reason="it launches from r0 = R")
     launch.warn_ignored(
         "ECI MKS", "cross_wind_m_s", "head_wind_m_s", reason="the MKS has no wind (Chapter 3)"
+    )
+    rotation = (
+        launch.rotation_rate_rad_s
+        if isinstance(launch, Launch)
+        else launch.shared("rotation_rate_rad_s")
     )
     projectile = launch.projectile
     return launch_correction(
@@ -481,15 +489,20 @@ def correction_for_launch(launch: Launch, model: str | EciModel = CONSISTENT) ->
         drag_area_m2=launch.launch_drag_coefficient * projectile.reference_area_m2,
         mass_kg=projectile.mass_kg,
         surface_density_kg_m3=mks.gun_density_kg_m3(launch),
-        rotation_rate_rad_s=launch.rotation_rate_rad_s,
+        rotation_rate_rad_s=rotation,
         model=model,
     )
 
 
 def solution_for_launch(
-    launch: Launch, model: str | EciModel = CONSISTENT, *, n_terms: int = 3, warn: bool = True
+    launch: Launch | Launches,
+    model: str | EciModel = CONSISTENT,
+    *,
+    n_terms: int = 3,
+    warn: bool = True,
 ) -> mks.ModifiedKeplerSolution:
-    """The ECI MKS of a :class:`~harp_analysis.launch.Launch` (:func:`correction_for_launch`)."""
+    """The ECI MKS of a :class:`~harp_analysis.launch.Launch`, or of every launch of a
+    :class:`~harp_analysis.launch.Launches` at once (:func:`correction_for_launch`)."""
     return solution_for(correction_for_launch(launch, model), n_terms=n_terms, warn=warn)
 
 

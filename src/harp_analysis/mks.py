@@ -45,7 +45,7 @@ import pandas as pd
 from . import earth
 from .atmosphere import SEA_LEVEL_DENSITY_KG_M3, TEXT_DECAY_CONSTANT_PER_M, get_atmosphere
 from .compiled import jit
-from .launch import Launch
+from .launch import Launch, Launches
 from .trajectory import describe, launch_frame
 from .validation import ModelValidityWarning, check_range, finite_array, finite_scalar
 
@@ -726,35 +726,25 @@ class ModifiedKeplerSolution:
             )
 
 
-def gun_density_kg_m3(launch: Launch) -> float:
+def gun_density_kg_m3(launch: Launch | Launches):
     """rho0 of the MKS for ``launch``: its air is eq 3.11's, rho0 exp(-k a) with rho0 =
     1.225 kg/m^3 (Chapter 3 B's fit to the 1976 standard atmosphere), taken at the site's
     altitude, whatever air the simulations fly, with the day's density change; none in a
-    vacuum launch."""
+    vacuum launch. A float for a :class:`Launch`, an array (n,) for :class:`Launches`."""
     if get_atmosphere(launch.atmosphere).density(0.0) == 0.0:
-        return 0.0
-    day_factor = launch.day[0]
-    return (
-        day_factor
+        return 0.0 if isinstance(launch, Launch) else np.zeros(len(launch))
+    if isinstance(launch, Launch):
+        return (
+            launch.day[0]
+            * SEA_LEVEL_DENSITY_KG_M3
+            * math.exp(-TEXT_DECAY_CONSTANT_PER_M * launch.site_altitude_m)
+        )
+    density = (
+        launch.day[0]
         * SEA_LEVEL_DENSITY_KG_M3
-        * math.exp(-TEXT_DECAY_CONSTANT_PER_M * launch.site_altitude_m)
+        * np.exp(-TEXT_DECAY_CONSTANT_PER_M * launch.compact("site_altitude_m"))
     )
-
-
-def _launches(launches) -> list[Launch]:
-    if isinstance(launches, Launch):
-        return [launches]
-    if isinstance(launches, (str, bytes)) or not hasattr(launches, "__iter__"):
-        raise TypeError(
-            "launch must be a Launch or a non-empty sequence of them; "
-            f"got {type(launches).__name__} {launches!r:.80}"
-        )
-    launches = list(launches)
-    if not launches or not all(isinstance(launch, Launch) for launch in launches):
-        raise TypeError(
-            f"launch must be a Launch or a non-empty sequence of them; got {launches!r:.80}"
-        )
-    return launches
+    return np.broadcast_to(density, (len(launch),))
 
 
 def for_launch(
@@ -764,52 +754,56 @@ def for_launch(
     decay_constant_per_m: float = TEXT_DECAY_CONSTANT_PER_M,
     warn: bool = True,
 ) -> ModifiedKeplerSolution:
-    """The non-rotating MKS of ``launch`` (a :class:`~harp_analysis.launch.Launch`, or a
-    sequence of them, solved together): Cd0 of the projectile's drag law at the launch Mach
+    """The non-rotating MKS of ``launch``: a :class:`~harp_analysis.launch.Launch`, or many
+    solved together, as :class:`~harp_analysis.launch.Launches` or a sequence of Launch sharing
+    a projectile and an atmosphere. Cd0 of the projectile's drag law at the launch Mach
     number, rho0 of the launch's air at the gun, k of eq 3.11 (Chapter 3 B), r0 = R + the
     site's altitude. The MKS is planar and drag-only: a wind is ignored with a warning, and a
     rotating Earth is :func:`harp_analysis.eci.solution_for_launch`'s."""
-    launches = _launches(launch)
-    for one in launches:
-        one.require_zero(
-            "MKS",
-            "rotation_rate_rad_s",
-            reason="the MKS is non-rotating; eci.solution_for_launch corrects it",
-        )
-        if one.elevation_deg >= 90.0:
-            raise ValueError(
-                f"the MKS cannot fly launch.elevation_deg = {one.elevation_deg:g}: a vertical "
-                "shot has no angular momentum and tau = k r0 tan(phi0) (eq 3.27) is infinite"
-            )
-        if warn:
-            one.warn_ignored(
-                "MKS", "cross_wind_m_s", "head_wind_m_s", reason="the MKS has no wind (Chapter 3)"
-            )
-    speed, elevation, cd0, density, area, mass, radius = (
-        np.array(
-            [getattr(one, name) if isinstance(name, str) else name(one) for one in launches],
-            dtype=float,
-        )
-        for name in (
-            "speed_m_s",
-            "elevation_rad",
-            "launch_drag_coefficient",
-            gun_density_kg_m3,
-            lambda one: one.projectile.reference_area_m2,
-            lambda one: one.projectile.mass_kg,
-            lambda one: earth.RADIUS_M + one.site_altitude_m,
-        )
-    )
-    beta = decay_factor_beta(cd0, density, area, mass, elevation, decay_constant_per_m)
     single = isinstance(launch, Launch)
-    pick = (lambda a: a[0]) if single else (lambda a: a)
+    launches = Launches.from_launches(launch)
+    launches.require_zero(
+        "MKS",
+        "rotation_rate_rad_s",
+        reason="the MKS is non-rotating; eci.solution_for_launch corrects it",
+    )
+    vertical = launches.elevation_deg >= 90.0
+    if vertical.any():
+        raise ValueError(
+            f"the MKS cannot fly launch.elevation_deg = 90 (launch {np.argmax(vertical)}): a "
+            "vertical shot has no angular momentum and tau = k r0 tan(phi0) (eq 3.27) is infinite"
+        )
+    if warn:
+        launches.warn_ignored(
+            "MKS", "cross_wind_m_s", "head_wind_m_s", reason="the MKS has no wind (Chapter 3)"
+        )
+    projectile = launches.projectile
+    elevation = np.radians(launches.compact("elevation_deg"))
+    radius = earth.RADIUS_M + launches.compact("site_altitude_m")
+    beta = decay_factor_beta(
+        launches.launch_drag_coefficient,
+        gun_density_kg_m3(launches),
+        projectile.reference_area_m2,
+        projectile.mass_kg,
+        elevation,
+        decay_constant_per_m,
+    )
+    tau = decay_rate_tau(elevation, decay_constant_per_m, radius)
+    count = len(launches)
+
+    def column(values):  # one number where the launches share it (the class broadcasts)
+        values = np.asarray(values)
+        if single or values.size == 1:
+            return float(values.flat[0])
+        return np.ascontiguousarray(values)
+
     return ModifiedKeplerSolution(
-        pick(speed),
-        pick(elevation),
-        pick(beta),
-        pick(decay_rate_tau(elevation, decay_constant_per_m, radius)),
+        column(launches.compact("speed_m_s")),
+        column(np.broadcast_to(elevation, (count,))),  # every launch's: the solution's shape
+        column(beta),
+        column(tau),
         n_terms=n_terms,
-        radius_m=pick(radius),
+        radius_m=column(radius),
         warn=warn,
     )
 

@@ -15,15 +15,20 @@ the right of it) at launch; the air of the launch's day (:func:`.atmosphere.day_
 model's with its density change and temperature change.
 
 The right-hand side and the stepping loop are compiled (:mod:`.compiled`; :func:`warm_up`
-compiles them ahead of use, once per version of the package); a batch flies its launches one
-after the other at the speed of one (``make benchmark``).
+compiles them ahead of use, once per version of the package), and so are a launch's initial
+state, the summary of its flight and the rows of its table: one call from Python flies a batch,
+so one flight costs little more than its integration, and a batch flies its launches one after
+the other at the speed of one (``make benchmark``). Launches come as a :class:`Launch`, a
+:class:`~harp_analysis.launch.Launches` (arrays, validated once) or a sequence of Launch.
 """
 
 from __future__ import annotations
 
 import math
+import multiprocessing
+import os
 import warnings
-from collections.abc import Iterable
+from concurrent.futures import ProcessPoolExecutor
 from functools import cache
 from typing import NamedTuple
 
@@ -31,7 +36,7 @@ import numpy as np
 import pandas as pd
 
 from . import earth
-from .atmosphere import air, day_air, get_atmosphere
+from .atmosphere import SOUND_SQUARED_PER_KELVIN, air, day_air, get_atmosphere
 from .compiled import jit, vector
 from .drag import drag_coefficient
 from .integrator import (
@@ -50,16 +55,16 @@ from .integrator import (
     step_factor,
     trial_step,
 )
-from .launch import Launch
+from .launch import Launch, Launches
 from .trajectory import (
     BASE_COLUMNS,
     TruncatedFlightWarning,
-    cross_product,
+    climb_angle,
+    cross,
     describe,
-    flight_path_angle,
-    launch_frame,
-    rotate_about_axis,
-    surface_ranges,
+    dot,
+    launch_axes,
+    surface_range,
     turned_about_axis,
 )
 from .validation import check_range, finite_scalar, positive_scalar
@@ -261,15 +266,18 @@ def _fly_all(y0, weather, air_code, drag_code, dynamics, numerics, record):
 
 
 @jit(inline=True)
-def _rows(times_s, step_times, steps, weather, air_code, drag_code, dynamics):
-    """States (6, m) at ``times_s`` within the recorded steps, and the forces there: radius,
-    altitude, air speed, Mach, Cd and density (6, m)."""
+def _rows(times_s, step_times, steps, weather, axes, air_code, drag_code, dynamics):
+    """The trajectory table at ``times_s`` within the recorded steps of launch 0: one row (m,
+    13) per time, with :data:`trajectory.BASE_COLUMNS` in their order."""
     m = times_s.size
-    states, forces = np.empty((6, m)), np.empty((6, m))
+    table, y = np.empty((m, 13)), np.empty(6)
+    up = (axes[0, 0, 0], axes[0, 1, 0], axes[0, 2, 0])
+    downrange = (axes[1, 0, 0], axes[1, 1, 0], axes[1, 2, 0])
+    omega = dynamics[_OMEGA]
     last = step_times.size - 2
     for j in range(m):
-        i = min(max(np.searchsorted(step_times, times_s[j], side="right") - 1, 0), last)
-        y = states[:, j]
+        t = times_s[j]
+        i = min(max(np.searchsorted(step_times, t, side="right") - 1, 0), last)
         hermite(
             step_times[i],
             step_times[i + 1],
@@ -277,32 +285,125 @@ def _rows(times_s, step_times, steps, weather, air_code, drag_code, dynamics):
             steps[:6, i + 1],
             steps[6:, i],
             steps[6:, i + 1],
-            times_s[j],
+            t,
             y,
         )
         radius, altitude, _, _, _, air_speed, mach, cd, density = _forces(
-            times_s[j], y.copy(), weather, air_code, drag_code, dynamics
+            t, y, weather, air_code, drag_code, dynamics
         )
-        forces[0, j], forces[1, j], forces[2, j] = radius, altitude, air_speed
-        forces[3, j], forces[4, j], forces[5, j] = mach, cd, density
-    return states, forces
+        r, v = (y[0], y[1], y[2]), (y[3], y[4], y[5])
+        ground, cross_range = surface_range(_earth_fixed(y[0], y[1], y[2], omega, t), up, downrange)
+        drag = dynamics[4] * density * cd * air_speed**2
+        momentum = cross(r, v)
+        row = table[j]
+        row[0], row[1], row[2], row[3], row[4] = t, y[0], y[1], y[2], altitude
+        row[5], row[6], row[7], row[8], row[9] = ground, cross_range, np.sqrt(dot(v, v)), mach, cd
+        row[10] = drag / (earth.GM_M3_S2 / radius**2)
+        row[11] = np.sqrt(dot(momentum, momentum))
+        row[12] = climb_angle(r, v)
+    return table
+
+
+#: The launch fields a batch's kernel takes, one row each (:func:`_setup`).
+_COLUMNS = (
+    "elevation_deg",
+    "speed_m_s",
+    "latitude_deg",
+    "longitude_deg",
+    "bearing_deg",
+    "head_wind_m_s",
+    "cross_wind_m_s",
+    "density_change_fraction",
+    "temperature_change_k",
+)
+
+
+@jit
+def _setup(columns, omega, site_m):
+    """Initial states (6, n), weather (5, n) and launch axes up and downrange (2, 3, n) of the
+    launches whose :data:`_COLUMNS` are ``columns`` (9, n); the site's altitude is shared (the
+    impact event sees states only)."""
+    n = columns.shape[1]
+    y0, weather, axes = np.empty((6, n)), np.empty((5, n)), np.empty((2, 3, n))
+    for i in range(n):
+        elevation, speed = math.radians(columns[0, i]), columns[1, i]
+        up, downrange, _ = launch_axes(
+            math.radians(columns[2, i]), math.radians(columns[3, i]), math.radians(columns[4, i])
+        )
+        right = cross(downrange, up)
+        radius = earth.RADIUS_M + site_m
+        for k in range(3):
+            y0[k, i] = radius * up[k]
+            y0[3 + k, i] = speed * (np.cos(elevation) * downrange[k] + np.sin(elevation) * up[k])
+            weather[k, i] = -columns[5, i] * downrange[k] + columns[6, i] * right[k]
+            axes[0, k, i], axes[1, k, i] = up[k], downrange[k]
+        y0[3, i] += omega * -y0[1, i]  # the gun turns with the Earth
+        y0[4, i] += omega * y0[0, i]
+        weather[3, i] = 1.0 + columns[7, i]
+        weather[4, i] = SOUND_SQUARED_PER_KELVIN * columns[8, i]
+    return y0, weather, axes
+
+
+@jit(inline=True)
+def _earth_fixed(x, y, z, omega, t):
+    """An inertial vector at time ``t`` in the Earth-fixed axes (the inertial ones at t = 0)."""
+    x, y = turned_about_axis(x, y, -omega * t)
+    return x, y, z
+
+
+@jit
+def _summarise(event_times, states, axes, omega, max_time_s):
+    """What :class:`Flights` holds of each launch, rows of (14, n): the apogee's time, altitude
+    and ground range, the end's time, ground and cross range, inertial speed, 1 if it is the
+    impact (else 0), Earth-fixed position (3) and velocity relative to the Earth (3)."""
+    n = event_times.shape[1]
+    out = np.empty((14, n))
+    for i in range(n):
+        up = (axes[0, 0, i], axes[0, 1, i], axes[0, 2, i])
+        downrange = (axes[1, 0, i], axes[1, 1, i], axes[1, 2, i])
+        apogee_t, impact_t = event_times[0, i], event_times[1, i]
+        out[0, i], out[1, i], out[2, i] = apogee_t, math.nan, math.nan
+        if not math.isnan(apogee_t):
+            top = _earth_fixed(states[0, 0, i], states[0, 1, i], states[0, 2, i], omega, apogee_t)
+            out[1, i] = np.sqrt(dot(top, top)) - earth.RADIUS_M
+            out[2, i] = surface_range(top, up, downrange)[0]
+        end_t = max_time_s if math.isnan(impact_t) else impact_t
+        r = (states[1, 0, i], states[1, 1, i], states[1, 2, i])
+        v = (states[1, 3, i], states[1, 4, i], states[1, 5, i])
+        position = _earth_fixed(r[0], r[1], r[2], omega, end_t)
+        velocity = _earth_fixed(v[0] + omega * r[1], v[1] - omega * r[0], v[2], omega, end_t)
+        out[3, i] = end_t
+        out[4, i], out[5, i] = surface_range(position, up, downrange)
+        out[6, i] = np.sqrt(dot(v, v))
+        out[7, i] = 0.0 if math.isnan(impact_t) else 1.0
+        for k in range(3):
+            out[8 + k, i], out[11 + k, i] = position[k], velocity[k]
+    return out
 
 
 @cache
 def _kernels(air_code: int, drag_code: int):
     """The flights and the table rows compiled for one atmosphere and drag law: their numbers
     are constants of the machine code, so the other models' branches fold away (half the time
-    of a right-hand side). Compiled at first use (:func:`warm_up`), then loaded from disk."""
+    of a right-hand side). Compiled at first use (:func:`warm_up`), then loaded from disk;
+    each pair has cache files of its own, so that processes may compile different pairs at
+    once."""
 
-    @jit
-    def fly(y0, weather, dynamics, numerics, record):
-        return _fly_all(y0, weather, air_code, drag_code, dynamics, numerics, record)
+    def fly(columns, dynamics, numerics, site_m, record):
+        omega = dynamics[_OMEGA]
+        y0, weather, axes = _setup(columns, omega, site_m)
+        event_times, states, counts, step_times, steps = _fly_all(
+            y0, weather, air_code, drag_code, dynamics, numerics, record
+        )
+        summary = _summarise(event_times, states, axes, omega, numerics[3])
+        return summary, counts, weather, axes, step_times, steps
 
-    @jit
-    def rows(times_s, step_times, steps, weather, dynamics):
-        return _rows(times_s, step_times, steps, weather, air_code, drag_code, dynamics)
+    def rows(times_s, step_times, steps, weather, axes, dynamics):
+        return _rows(times_s, step_times, steps, weather, axes, air_code, drag_code, dynamics)
 
-    return fly, rows
+    for kernel in (fly, rows):  # numba names a cache file after the function
+        kernel.__qualname__ = f"{kernel.__name__}_air{air_code}_drag{drag_code}"
+    return jit(fly), jit(rows)
 
 
 def _numerics(rtol, max_time_s):
@@ -316,43 +417,34 @@ def _numerics(rtol, max_time_s):
     return rtol, max_time_s
 
 
-def _launches(launches) -> list[Launch]:
-    """One or many launches that can share a batch: one projectile, air, Earth rotation and
-    site altitude (the impact event, a function of the state alone, needs one site)."""
-    if isinstance(launches, Launch):
-        return [launches]
-    if isinstance(launches, str | bytes) or not isinstance(launches, Iterable):
-        raise TypeError(
-            "launches must be a Launch or a sequence of Launch (harp_analysis.launch.Launch); "
-            f"got {type(launches).__name__}"
-        )
-    launches = list(launches)
-    if not launches:
-        raise ValueError("launches must hold at least one Launch")
-    for position, launch in enumerate(launches):
-        if not isinstance(launch, Launch):
-            raise TypeError(f"launches[{position}] must be a Launch; got {type(launch).__name__}")
-        for name in ("projectile", "atmosphere", "rotation_rate_rad_s", "site_altitude_m"):
-            if getattr(launch, name) != getattr(launches[0], name):
-                raise ValueError(
-                    f"launches[{position}].{name} differs from launches[0]'s: a batch shares "
-                    "one projectile, atmosphere, Earth rotation and site altitude"
-                )
-    return launches
+_BATCH_REASON = "a batch shares one projectile, atmosphere, Earth rotation and site altitude"
 
 
 class _Batch(NamedTuple):
-    """What the launches of one batch share, and each one's initial state and weather."""
+    """What the launches of one batch share, and their :data:`_COLUMNS` (9, n)."""
 
     codes: tuple[int, int]  # the atmosphere's and the drag law's
     dynamics: tuple
-    omega: float
-    site_m: float
     breakpoints_m: np.ndarray
-    y0: np.ndarray  # (6, n)
-    weather: np.ndarray  # (5, n): wind (3), density factor, gamma R dT
-    up: np.ndarray  # (3, n)
-    downrange: np.ndarray  # (3, n)
+    site_m: float
+    columns: np.ndarray
+
+
+def _batch(launches) -> _Batch:
+    """A :class:`Launch`, a :class:`Launches` or a sequence of Launch as one batch: one
+    projectile, air, Earth rotation and site altitude (the impact event, a function of the
+    state alone, needs one site)."""
+    if isinstance(launches, Launch):  # one launch, validated already: its numbers as they are
+        omega, site = launches.rotation_rate_rad_s, launches.site_altitude_m
+        columns = np.array([[getattr(launches, name)] for name in _COLUMNS])
+    else:
+        if not isinstance(launches, Launches):
+            launches = Launches.from_launches(launches)
+        omega = launches.shared("rotation_rate_rad_s", reason=_BATCH_REASON)
+        site = launches.shared("site_altitude_m", reason=_BATCH_REASON)
+        columns = np.array([getattr(launches, name) for name in _COLUMNS])
+    codes, dynamics, breakpoints = _shared(launches.projectile, launches.atmosphere, omega)
+    return _Batch(codes, dynamics, breakpoints, site, columns)
 
 
 _STATE_FLOOR = np.array([earth.RADIUS_M] * 3 + [1e3] * 3)  # error scale floor: m, m/s
@@ -372,52 +464,6 @@ def _shared(projectile, atmosphere: str, omega: float) -> tuple:
         float(omega),
     )
     return (model.code, law[0]), dynamics, np.array(model.breakpoints_m, dtype=float)
-
-
-def _batch(launches: list[Launch]) -> _Batch:
-    first = launches[0]
-    omega, site = first.rotation_rate_rad_s, first.site_altitude_m
-    codes, dynamics, breakpoints = _shared(first.projectile, first.atmosphere, omega)
-    elevation, speed, latitude, longitude, bearing, head, cross, density, sound = np.array(
-        [
-            (
-                launch.elevation_deg,
-                launch.speed_m_s,
-                launch.latitude_deg,
-                launch.longitude_deg,
-                launch.bearing_deg,
-                launch.head_wind_m_s,
-                launch.cross_wind_m_s,
-                *launch.day,
-            )
-            for launch in launches
-        ],
-        dtype=float,
-    ).T
-    el, lat, lon, brg = np.radians([elevation, latitude, longitude, bearing])
-    up, downrange, _ = launch_frame(lat, lon, brg)
-    position = (earth.RADIUS_M + site) * up  # site shared: the impact event sees states only
-    ground_velocity = speed * (np.cos(el) * downrange + np.sin(el) * up)
-    surface_velocity = omega * np.array([-position[1], position[0], np.zeros_like(lat)])
-    right = cross_product(downrange, up)
-    return _Batch(
-        codes,
-        dynamics,
-        float(omega),
-        float(site),
-        breakpoints,
-        np.ascontiguousarray(np.concatenate([position, ground_velocity + surface_velocity])),
-        np.ascontiguousarray(np.vstack([-head * downrange + cross * right, density, sound])),
-        up,
-        downrange,
-    )
-
-
-def _ranges(batch: _Batch, times_s, positions, index=slice(None)):
-    """Ground and cross range (m) of inertial positions (3, m) at ``times_s``, measured on the
-    turning Earth from the launch point of launch ``index`` (one, or one per position)."""
-    earth_fixed = rotate_about_axis(positions, -batch.omega * times_s).T
-    return surface_ranges(earth_fixed, batch.up[:, index].T, batch.downrange[:, index].T)
 
 
 class Flights(NamedTuple):
@@ -443,9 +489,8 @@ def _fly(
 ):
     """The compiled flights of ``batch``; FloatingPointError if one cannot be integrated."""
     fly, _ = _kernels(*batch.codes)
-    end_m = batch.site_m if end is None else end
     numerics = (
-        float(end_m),
+        batch.site_m if end is None else end,
         -1.0 if rising else 1.0,
         batch.breakpoints_m,
         max_time_s,
@@ -453,11 +498,11 @@ def _fly(
         _STATE_FLOOR,
         _MAX_STEP_S,
     )
-    flights = fly(batch.y0, batch.weather, batch.dynamics, numerics, record)
-    failed = np.flatnonzero(flights[2][2])
+    flights = fly(batch.columns, batch.dynamics, numerics, batch.site_m, record)
+    failed = np.flatnonzero(flights[1][2])
     if failed.size:
         raise FloatingPointError(
-            f"the 3DOF could not integrate launch {failed[0]} of {batch.y0.shape[1]}: a "
+            f"the 3DOF could not integrate launch {failed[0]} of {batch.columns.shape[1]}: a "
             "non-finite acceleration or a step too small to advance the time"
         )
     return flights
@@ -471,65 +516,72 @@ def fly_3dof(
     end_altitude_m: float | None = None,
     rising: bool = False,
 ) -> Flights:
-    """The apogee and end of each launch in ``launches`` (one :class:`Launch` or a sequence
-    sharing one projectile, atmosphere, Earth rotation and site altitude), as arrays: the
-    3DOF's engine without its tables (:func:`simulate_3dof_batch` is this as a DataFrame).
+    """The apogee and end of each launch in ``launches`` (one :class:`Launch`, a
+    :class:`Launches`, or a sequence of Launch sharing one projectile, atmosphere, Earth
+    rotation and site altitude), as arrays: the 3DOF's engine without its tables
+    (:func:`simulate_3dof_batch` is this as a DataFrame).
 
     A flight ends where it falls back to the site's altitude, or to ``end_altitude_m`` (m) if
     given, or rises through it if ``rising`` (a target above the gun on the way up); ``impact``
     says whether it got there before ``max_time_s``."""
-    launches = _launches(launches)
     rtol, max_time_s = _numerics(rtol, max_time_s)
     if end_altitude_m is not None:
         end_altitude_m = float(finite_scalar(end_altitude_m, "end_altitude_m"))
     batch = _batch(launches)
-    event_times, states, counts, _, _ = _fly(
+    summary, counts, *_ = _fly(
         batch, max_time_s, rtol, record=False, end=end_altitude_m, rising=rising
     )
-    apogee_t, impact_t = event_times
-    impact = np.isfinite(impact_t)
-    end_t = np.where(impact, impact_t, max_time_s)
-    n = apogee_t.size
-    ground, cross = _ranges(  # of the apogee and the end at once
-        batch,
-        np.concatenate([apogee_t, end_t]),
-        np.concatenate([states[0, :3], states[1, :3]], axis=1),
-        np.tile(np.arange(n), 2),
-    )
-    apogee_ground, ground, cross = ground[:n], ground[n:], cross[n:]
-    reached = np.isfinite(apogee_t)
-    end_position = rotate_about_axis(states[1, :3], -batch.omega * end_t)
-    turning = batch.omega * np.array([-states[1, 1], states[1, 0], np.zeros(n)])
-    end_velocity = rotate_about_axis(states[1, 3:] - turning, -batch.omega * end_t)
+    impact = summary[7] == 1.0
+    apogee_t, apogee, apogee_ground, end_t, ground, cross_range, speed = summary[:7]
     return Flights(
         apogee_t,
-        np.where(reached, np.linalg.norm(states[0, :3], axis=0) - earth.RADIUS_M, np.nan),
-        np.where(reached, apogee_ground, np.nan),
+        apogee,
+        apogee_ground,
         end_t,
         ground,
-        cross,
-        np.linalg.norm(states[1, 3:], axis=0),
+        cross_range,
+        speed,
         impact,
         counts[1],
         counts[0],
-        end_position,
-        end_velocity,
+        summary[8:11],
+        summary[11:14],
     )
 
 
-def warm_up() -> None:
+def _warm_up_pair(projectile_name: str, atmosphere: str) -> None:
+    """Compile (or load) the kernels of one projectile's drag law and one atmosphere."""
+    from .projectiles import get_projectile
+
+    projectile = get_projectile(projectile_name)
+    launch = Launch(projectile, projectile.launch_speed_m_s, 45.0, atmosphere=atmosphere)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TruncatedFlightWarning)
+        simulate_3dof(launch, max_time_s=1.0)  # a short flight compiles every kernel
+
+
+def warm_up(processes: int | None = None) -> None:
     """Compile the 3DOF's kernels now (or load them from the disk cache), not at first use: one
-    per pair of atmosphere and drag law of the named projectiles (about 11 s each, once)."""
+    per pair of atmosphere and drag law of the named projectiles (about 15 s each, once). The
+    first pair compiles what every pair shares; the others are shared out among ``processes``
+    (default: one per core), each compiling pairs no other compiles."""
     from .atmosphere import ATMOSPHERE_NAMES
     from .projectiles import PROJECTILE_NAMES, get_projectile
 
-    laws = {get_projectile(name).drag_law.code: get_projectile(name) for name in PROJECTILE_NAMES}
-    for projectile in laws.values():
-        for atmosphere in ATMOSPHERE_NAMES:
-            launch = Launch(projectile, projectile.launch_speed_m_s, 45.0, atmosphere=atmosphere)
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", TruncatedFlightWarning)
-                simulate_3dof(launch, max_time_s=1.0)  # a short flight compiles every kernel
+    laws = {get_projectile(name).drag_law.code: name for name in PROJECTILE_NAMES}
+    pairs = [(name, atmosphere) for name in laws.values() for atmosphere in ATMOSPHERE_NAMES]
+    _warm_up_pair(*pairs[0])
+    workers = min(processes or os.cpu_count() or 1, len(pairs) - 1)
+    if workers <= 1:
+        for pair in pairs[1:]:
+            _warm_up_pair(*pair)
+        return
+    # spawned, not forked: a fork of a process that has loaded numba's compiler is not safe
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
+        list(pool.map(_warm_up_pair, *zip(*pairs[1:])))
+
+
+_TABLE_COLUMNS = pd.Index(BASE_COLUMNS)  # built once: an Index costs more than the table
 
 
 def simulate_3dof(
@@ -548,56 +600,24 @@ def simulate_3dof(
             "(simulate_3dof_batch flies a sequence of them)"
         )
     step = positive_scalar(output_step_s, "output_step_s", "s")
-    launches = _launches(launch)
     rtol, max_time_s = _numerics(rtol, max_time_s)
-    batch = _batch(launches)
-    event_times, states, counts, step_times, steps = _fly(batch, max_time_s, rtol, record=True)
-    (apogee_t, impact_t), apogee, (evaluations, count) = (
-        event_times[:, 0],
-        states[0, :, 0],
-        counts[:2],
-    )
-    impact = bool(np.isfinite(impact_t))
-    end_t = impact_t if impact else step_times[-1]
+    batch = _batch(launch)
+    summary, counts, weather, axes, step_times, steps = _fly(batch, max_time_s, rtol, record=True)
+    impact = summary[7, 0] == 1.0
+    end_t = summary[3, 0] if impact else step_times[-1]
     times = np.append(np.arange(0.0, end_t, step), end_t)
-    y, forces = _kernels(*batch.codes)[1](
-        times, step_times, steps, batch.weather[:, 0], batch.dynamics
+    rows = _kernels(*batch.codes)[1](
+        times, step_times, steps, np.ascontiguousarray(weather[:, 0]), axes, batch.dynamics
     )
-    radius, altitude, air_speed, mach, cd, density = forces
-    ground, cross = _ranges(batch, times, y[:3], 0)
-    drag = batch.dynamics[4] * density * cd * air_speed**2
-    columns = dict(
-        time_s=times,
-        x_m=y[0],
-        y_m=y[1],
-        z_m=y[2],
-        altitude_m=altitude,
-        ground_range_m=ground,
-        cross_range_m=cross,
-        speed_m_s=np.sqrt(np.sum(y[3:] ** 2, axis=0)),
-        mach=mach,
-        drag_coefficient=cd,
-        drag_to_gravity=drag / (earth.GM_M3_S2 / radius**2),
-        specific_angular_momentum_m2_s=np.linalg.norm(np.cross(y[:3].T, y[3:].T), axis=1),
-        flight_path_angle_rad=flight_path_angle(y[:3].T, y[3:].T),
-    )
-    table = pd.DataFrame({name: columns[name] for name in BASE_COLUMNS})
-    top = None
-    if np.isfinite(apogee_t):
-        apogee_ground, _ = _ranges(batch, np.array([apogee_t]), apogee[:3, None], 0)
-        top = (
-            apogee_t,
-            float(np.linalg.norm(apogee[:3]) - earth.RADIUS_M),
-            float(apogee_ground[0]),
-        )
+    apogee_t = summary[0, 0]
     return describe(
-        table,
+        pd.DataFrame(rows, columns=_TABLE_COLUMNS, copy=False),  # the kernel's new array
         engine="3DOF",
-        launch=launches[0],
-        apogee=top,
+        launch=launch,
+        apogee=(apogee_t, summary[1, 0], summary[2, 0]) if np.isfinite(apogee_t) else None,
         impact=impact,
-        rhs_evaluations=int(evaluations[0]),
-        steps=int(count[0]),
+        rhs_evaluations=int(counts[0, 0]),
+        steps=int(counts[1, 0]),
         max_time_s=max_time_s,
         rtol=rtol,
     )
@@ -606,18 +626,18 @@ def simulate_3dof(
 def simulate_3dof_batch(
     launches, *, rtol: float = 1e-9, max_time_s: float = 3000.0
 ) -> pd.DataFrame:
-    """Many 3DOF launches: ``launches`` is a sequence of :class:`Launch` sharing one
-    projectile, atmosphere, Earth rotation and site altitude (e.g.
+    """Many 3DOF launches: ``launches`` is a :class:`Launches` or a sequence of :class:`Launch`
+    sharing one projectile, atmosphere, Earth rotation and site altitude (e.g.
     ``[launch.but(elevation_deg=e) for e in elevations]``). One row per launch: its elevation,
     speed, bearing and latitude, and the metadata keys of :func:`simulate_3dof` (but
     ``engine`` and ``launch``, and ``rhs_evaluations``, the batch's total, which are in
     ``frame.attrs``). Same physics and integrator as :func:`simulate_3dof`."""
-    launches = _launches(launches)
+    launches = Launches.from_launches(launches)
     flights = fly_3dof(launches, rtol=rtol, max_time_s=max_time_s)
     summary = pd.DataFrame(
         {
             **{
-                name: np.array([getattr(launch, name) for launch in launches], dtype=float)
+                name: np.array(getattr(launches, name))
                 for name in ("elevation_deg", "speed_m_s", "bearing_deg", "latitude_deg")
             },
             **{name: getattr(flights, name) for name in Flights._fields[:-2]},
@@ -638,7 +658,7 @@ def simulate_3dof_batch(
         )
     summary.attrs.update(
         engine="3DOF",
-        projectile=launches[0].projectile.name,
+        projectile=launches.projectile.name,
         rhs_evaluations=int(flights.rhs_evaluations.sum()),
         rtol=rtol,
     )

@@ -49,6 +49,11 @@ __all__ = [
     "turned_about_axis",
     "surface_ranges",
     "flight_path_angle",
+    "dot",
+    "cross",
+    "launch_axes",
+    "surface_range",
+    "climb_angle",
 ]
 
 BASE_COLUMNS = (
@@ -68,6 +73,35 @@ BASE_COLUMNS = (
 )
 
 
+@formula
+def dot(a, b):
+    """a . b of two 3-vectors given as component triples (numbers, or arrays alike)."""
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+@formula
+def cross(a, b):
+    """a x b of two 3-vectors given as component triples (numbers, or arrays alike)."""
+    return a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]
+
+
+@formula
+def surface_range(position, up, downrange):
+    """:func:`surface_ranges` of component triples: one position (or arrays of them) and
+    its launch's up and downrange."""
+    right = cross(downrange, up)
+    radius = np.sqrt(dot(position, position))
+    sine = np.minimum(np.maximum(dot(position, right) / radius, -1.0), 1.0)
+    in_plane = np.arctan2(dot(position, downrange), dot(position, up))
+    return RADIUS_M * in_plane, RADIUS_M * np.arcsin(sine)
+
+
+def _components(vectors) -> tuple:
+    """The x, y and z components of vectors (..., 3)."""
+    array = np.asarray(vectors, dtype=float)
+    return array[..., 0], array[..., 1], array[..., 2]
+
+
 def surface_ranges(position_m, launch_up, launch_downrange):
     """Ground range and cross range (m) of Earth-centred positions ``position_m`` (..., 3).
 
@@ -76,26 +110,22 @@ def surface_ranges(position_m, launch_up, launch_downrange):
     (..., 3) with one launch per position); cross range is positive to the right of the line of
     fire (along ``downrange x up``).
     """
-    position = np.asarray(position_m, dtype=float)
-    up = np.asarray(launch_up, dtype=float)
-    downrange = np.asarray(launch_downrange, dtype=float)
-    right = np.cross(downrange, up)
-    radius = np.linalg.norm(position, axis=-1)
+    return surface_range(
+        _components(position_m), _components(launch_up), _components(launch_downrange)
+    )
 
-    def along(direction):
-        return np.einsum("...i,...i->...", position, direction)
 
-    out_of_plane = np.arcsin(np.clip(along(right) / radius, -1.0, 1.0))
-    in_plane = np.arctan2(along(downrange), along(up))
-    return RADIUS_M * in_plane, RADIUS_M * out_of_plane
+@formula
+def climb_angle(position, velocity):
+    """:func:`flight_path_angle` of component triples."""
+    radial = dot(position, velocity) / np.sqrt(dot(position, position))
+    sine = radial / np.sqrt(dot(velocity, velocity))
+    return np.arcsin(np.minimum(np.maximum(sine, -1.0), 1.0))
 
 
 def flight_path_angle(position_m, velocity_m_s):
     """Angle (rad) of ``velocity_m_s`` above the local horizontal at ``position_m`` (..., 3)."""
-    position = np.asarray(position_m, dtype=float)
-    velocity = np.asarray(velocity_m_s, dtype=float)
-    radial = np.sum(position * velocity, axis=-1) / np.linalg.norm(position, axis=-1)
-    return np.arcsin(np.clip(radial / np.linalg.norm(velocity, axis=-1), -1.0, 1.0))
+    return climb_angle(_components(position_m), _components(velocity_m_s))
 
 
 #: The keys every engine puts in ``frame.attrs``.
@@ -139,7 +169,7 @@ def describe(
     ``apogee`` is (time, altitude, ground range) or None if the flight never turned down; the
     end of the flight is the table's last row. A flight that did not reach the ground warns
     (:class:`TruncatedFlightWarning`) and records ``stop_reason = "max_time"``."""
-    last = frame.iloc[-1]
+    last = frame.iloc[-1].to_dict()  # a dict: a Series' attribute lookups cost microseconds
     apogee_time, apogee_altitude, apogee_range = apogee if apogee else (math.nan,) * 3
     if not impact:
         warnings.warn(
@@ -155,10 +185,10 @@ def describe(
         apogee_time_s=float(apogee_time),
         apogee_altitude_m=float(apogee_altitude),
         apogee_ground_range_m=float(apogee_range),
-        time_of_flight_s=float(last.time_s),
-        range_m=float(last.ground_range_m),
-        cross_range_m=float(last.cross_range_m),
-        impact_speed_m_s=float(last.speed_m_s),
+        time_of_flight_s=float(last["time_s"]),
+        range_m=float(last["ground_range_m"]),
+        cross_range_m=float(last["cross_range_m"]),
+        impact_speed_m_s=float(last["speed_m_s"]),
         impact=bool(impact),
         stop_reason="impact" if impact else "max_time",
         rhs_evaluations=int(rhs_evaluations),
@@ -171,20 +201,35 @@ def describe(
 def cross_product(a, b):
     """The cross product of 3-vectors along the first axis, (3, ...) each: ``np.cross(a, b,
     axis=0)`` without its generality (a tenth of its time on a launch's vectors)."""
-    return np.array(
-        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    return np.array(cross(a, b))
+
+
+@formula
+def launch_axes(latitude_rad, longitude_rad, bearing_rad):
+    """:func:`launch_frame` as component triples: up, downrange and east (numbers in compiled
+    code, arrays of one shape in numpy)."""
+    cos_latitude = np.cos(latitude_rad)
+    up = (
+        cos_latitude * np.cos(longitude_rad),
+        cos_latitude * np.sin(longitude_rad),
+        np.sin(latitude_rad),
     )
+    east = (-np.sin(longitude_rad), np.cos(longitude_rad), 0.0 * longitude_rad)
+    north = cross(up, east)
+    sine, cosine = np.sin(bearing_rad), np.cos(bearing_rad)
+    downrange = (
+        sine * east[0] + cosine * north[0],
+        sine * east[1] + cosine * north[1],
+        sine * east[2] + cosine * north[2],
+    )
+    return up, downrange, east
 
 
 def launch_frame(latitude_rad, longitude_rad, bearing_rad):
     """Unit vectors (3, n) at the launch point in the Earth-centred frame (z north, x toward
     longitude 0): up, downrange (along the bearing from true north) and east."""
-    lat, lon, bearing = np.broadcast_arrays(latitude_rad, longitude_rad, bearing_rad)
-    up = np.array([np.cos(lat) * np.cos(lon), np.cos(lat) * np.sin(lon), np.sin(lat)])
-    east = np.array([-np.sin(lon), np.cos(lon), np.zeros_like(lon)])
-    north = cross_product(up, east)
-    downrange = np.sin(bearing) * east + np.cos(bearing) * north
-    return up, downrange, east
+    axes = launch_axes(*np.broadcast_arrays(latitude_rad, longitude_rad, bearing_rad))
+    return tuple(np.array(axis) for axis in axes)
 
 
 @formula

@@ -14,6 +14,7 @@ __all__ = [
     "finite_array",
     "finite_scalar",
     "real_number",
+    "real_array",
     "positive_scalar",
     "check_range",
     "check_choice",
@@ -49,6 +50,19 @@ def real_number(value, name: str) -> float:
     if not math.isfinite(value):
         raise ValueError(f"{name} must be finite; got {value}")
     return value
+
+
+def real_array(value, name: str) -> np.ndarray:
+    """``value`` as a float64 array, strictly: TypeError naming ``name`` for strings, booleans
+    or anything else that is not real numbers (numpy would read "10" as ten), ValueError naming
+    the first element that is NaN or infinite."""
+    array = np.asarray(value)
+    if array.dtype.kind not in "iuf":
+        raise TypeError(
+            f"{name} must be a real number or an array of them; got {value!r:.80} "
+            f"(of dtype {array.dtype.kind!r})"
+        )
+    return finite_array(array, name)
 
 
 def positive_scalar(value, name: str, unit: str = "") -> float:
