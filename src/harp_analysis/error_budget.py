@@ -38,7 +38,7 @@ from scipy.stats import norm
 
 from . import earth, eci, harp
 from .harp_data import FOOT_M
-from .launch import Launch, baseline_chapter_4, chapter_2
+from .launch import Launch, Launches, baseline_chapter_4, chapter_2
 from .projectiles import HP
 from .sites import BARBADOS
 from .sweeps import SAMPLING_METHODS, chunks, sample_chunk, sweep
@@ -155,23 +155,22 @@ def representative_launches() -> dict[str, Launch]:
 
 
 # --- the 3DOF's flights -----------------------------------------------------------------------
-def _perturbed(launch: Launch, uncertainties, deviations: np.ndarray) -> tuple[list, np.ndarray]:
+def _perturbed(
+    launch: Launch, uncertainties, deviations: np.ndarray
+) -> tuple[Launches, np.ndarray]:
     """The launches of ``deviations`` (m, d) in units of each uncertainty's sd, and their
     delays of fire (s)."""
-    fields = [u.field for u in uncertainties]
     delays = np.zeros(len(deviations))
-    launches = []
-    for row, deviation in enumerate(deviations):
-        changes: dict[str, float] = {}
-        for field, u, z in zip(fields, uncertainties, deviation):
-            if field == "fire_time_s":
-                delays[row] = z * u.sd
-            else:
-                changes[field] = changes.get(field, getattr(launch, field)) + z * u.sd
-        if "bearing_deg" in changes:
-            changes["bearing_deg"] %= 360.0
-        launches.append(launch.but(**changes))
-    return launches, delays
+    fields: dict[str, np.ndarray] = {}
+    for u, z in zip(uncertainties, deviations.T):
+        if u.field == "fire_time_s":
+            delays = delays + z * u.sd
+        else:
+            fields[u.field] = fields.get(u.field, getattr(launch, u.field)) + z * u.sd
+    if "bearing_deg" in fields:
+        fields["bearing_deg"] %= 360.0
+    copies = Launches.from_launches(launch)[np.zeros(len(deviations), int)]  # one per row
+    return copies.but(**fields), delays
 
 
 def flown(launch: Launch, uncertainties, deviations, at_time_s: float) -> np.ndarray:
