@@ -6,9 +6,12 @@ uniformly in 20-85 deg from a seeded Philox stream (:func:`harp_analysis.sweeps.
 flown in chunks by :func:`harp_analysis.threedof.fly_3dof`. The same sweep runs in this process
 and on local clusters of one and of two worker processes (one thread each; the workers load the
 compiled kernels before the timing starts). So does a sweep of idle waits, which needs no CPU:
-its speed-up is the scheduling's alone, whatever else the machine is running. Printed: the best
-wall time of each (interleaved rounds), the speed-ups of two workers over one, whether every
-run returned the same apogees bit for bit, and the load average before the run.
+its speed-up is the scheduling's alone, whatever else the machine is running. The reference is
+the sweep in this process: the same flights, chunks and seeds, one after the other; every
+cluster's run must return its apogees bit for bit (checked). Printed: the best wall time of
+each (interleaved rounds), the speed-ups of two workers over one, whether every run returned
+the same apogees, and the load average before the run. ``--smoke``: a few small chunks, one
+round, clusters of threads in this process, to check every path.
 """
 
 import logging
@@ -19,7 +22,7 @@ from functools import partial
 
 import numpy as np
 from distributed import Client
-from measure import interleaved_best
+from measure import agree, interleaved_best, smoke_requested
 
 from harp_analysis import sweeps, threedof
 from harp_analysis.launch import baseline_chapter_4
@@ -39,14 +42,15 @@ def apogees_m(seed: int, indices: range) -> np.ndarray:
     return threedof.fly_3dof(launches).apogee_altitude_m
 
 
-def started_client(workers: int) -> tuple[Client, float]:
-    """The client of a new local cluster of ``workers`` processes (closed with the client),
-    its workers' kernels loaded, and the seconds it took to get there."""
+def started_client(workers: int, processes: bool = True) -> tuple[Client, float]:
+    """The client of a new local cluster of ``workers`` processes (or threads of this process,
+    which start in a fraction of the time) closed with the client, its workers' kernels loaded,
+    and the seconds it took to get there."""
     start = time.perf_counter()
     client = Client(
         n_workers=workers,
         threads_per_worker=1,
-        processes=True,
+        processes=processes,
         dashboard_address=":0",
         silence_logs=logging.ERROR,
     )
@@ -54,42 +58,46 @@ def started_client(workers: int) -> tuple[Client, float]:
     return client, time.perf_counter() - start
 
 
-def main():
+def main(smoke: bool = False) -> None:
     logging.getLogger("distributed").setLevel(logging.ERROR)  # its closing chatter too
     load = os.getloadavg()[0]
-    items = sweeps.chunks(FLIGHTS, CHUNK)
+    flights_count, chunk, rounds = (200, 50, 1) if smoke else (FLIGHTS, CHUNK, ROUNDS)
+    items = sweeps.chunks(flights_count, chunk)
     work = partial(apogees_m, SEED)
     sweeps.sweep(work, items[:1], progress=False)  # this process loads the kernels too
-    waits = [WAIT_S] * len(items)
+    waits = [WAIT_S / 10 if smoke else WAIT_S] * len(items)
     with ExitStack() as open_clients:
         started, flights, idle = {}, {}, {}
         for workers in (0, 1, 2):
             client = None
             if workers:
-                client, started[workers] = started_client(workers)
+                client, started[workers] = started_client(workers, processes=not smoke)
                 open_clients.enter_context(client)
             name = f"Dask, {workers} worker{'s' * (workers > 1)}" if workers else "in process"
             flights[name] = partial(sweeps.sweep, work, items, client=client, progress=False)
             idle[name] = partial(sweeps.sweep, time.sleep, waits, client=client, progress=False)
         results = {name: np.concatenate(run()) for name, run in flights.items()}
-        times = interleaved_best(flights, rounds=ROUNDS)
-        idle_times = interleaved_best(idle, rounds=ROUNDS)
+        times = interleaved_best(flights, rounds=rounds)
+        idle_times = interleaved_best(idle, rounds=rounds)
 
     reference = results["in process"]
+    for name, apogees in results.items():
+        agree(f"{name}'s apogees against the sweep in process", apogees - reference, 0.0)
     print(
-        f"sweep: {FLIGHTS:,} 3DOF flights of the baseline cone, elevation uniform in "
-        f"{LOWEST_DEG:g}-{HIGHEST_DEG:g} deg (Philox), {len(items)} chunks of {CHUNK:,}; "
-        f"and {len(items)} idle waits of {WAIT_S:g} s (no CPU: the scheduling alone)"
+        f"sweep: {flights_count:,} 3DOF flights of the baseline cone, elevation uniform in "
+        f"{LOWEST_DEG:g}-{HIGHEST_DEG:g} deg (Philox), {len(items)} chunks of {chunk:,}; "
+        f"and {len(items)} idle waits of {waits[0]:g} s (no CPU: the scheduling alone). "
+        "Reference: the same sweep in this process"
     )
     print(
-        f"best of {ROUNDS} interleaved rounds on {os.cpu_count()} cores, load average "
+        f"best of {rounds} interleaved rounds on {os.cpu_count()} cores, load average "
         f"{load:.1f} before the run (another process's load slows the flights)"
     )
     print(f"{'':16} {'flights (s)':>12} {'flights/s':>10} {'same apogees':>13} {'waits (s)':>10}")
     for name, seconds in times.items():
         same = "yes" if np.array_equal(results[name], reference) else "NO"
         print(
-            f"{name:16} {seconds:>12.2f} {FLIGHTS / seconds:>10,.0f} {same:>13} "
+            f"{name:16} {seconds:>12.2f} {flights_count / seconds:>10,.0f} {same:>13} "
             f"{idle_times[name]:>10.2f}"
         )
     one, two = "Dask, 1 worker", "Dask, 2 workers"
@@ -106,4 +114,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    main(smoke=smoke_requested())

@@ -1,5 +1,6 @@
 """What every benchmark measures with: best times (interleaved, so a busy machine slows every
-case alike), peak memory, a target's verdict, and the cold start of a fresh process."""
+case alike), peak memory, a target's verdict, the cold start of a fresh process, and the check
+that a reference computes what the package does (every benchmark's smoke mode asserts it)."""
 
 import math
 import os
@@ -9,21 +10,25 @@ import tempfile
 import time
 import tracemalloc
 
+import numpy as np
 
-def interleaved_best(functions: dict, rounds: int = 5) -> dict:
-    """Best time (s) of each function over ``rounds`` rounds that call each in turn."""
+
+def interleaved_best(functions: dict, rounds: int = 5, number: int = 1) -> dict:
+    """Best time (s) per call of each function over ``rounds`` rounds that call each in turn,
+    ``number`` times in a row."""
     best = dict.fromkeys(functions, math.inf)
     for _ in range(rounds):
         for name, function in functions.items():
             start = time.perf_counter()
-            function()
-            best[name] = min(best[name], time.perf_counter() - start)
+            for _ in range(number):
+                function()
+            best[name] = min(best[name], (time.perf_counter() - start) / number)
     return best
 
 
 def best_of(function, repeat: int = 5, number: int = 1) -> float:
     """Best of ``repeat`` timings of ``number`` calls of ``function``, per call (s)."""
-    return interleaved_best({"": lambda: [function() for _ in range(number)]}, repeat)[""] / number
+    return interleaved_best({"": function}, repeat, number)[""]
 
 
 def peak_memory_bytes(function) -> int:
@@ -51,3 +56,19 @@ def cold_start_s(code: str) -> float:
     if result.returncode:
         raise RuntimeError(f"the cold-start process failed:\n{result.stderr}")
     return float(result.stdout.split()[-1])
+
+
+def agree(what: str, difference, tolerance: float) -> float:
+    """The largest magnitude of ``difference`` (a number or an array), or AssertionError naming
+    ``what`` if it exceeds ``tolerance`` or is not finite: a benchmark's reference must compute
+    what the package computes, to a stated accuracy."""
+    largest = float(np.max(np.abs(difference)))
+    if not largest <= tolerance:
+        raise AssertionError(f"{what}: differs by {largest:.3g}, beyond {tolerance:.3g}")
+    return largest
+
+
+def smoke_requested() -> bool:
+    """Whether the command line asks for the smoke mode (``--smoke``): tiny sizes, one round,
+    no cold start, the references' agreement checked."""
+    return "--smoke" in sys.argv[1:]

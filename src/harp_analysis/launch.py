@@ -281,16 +281,25 @@ class Launches(_LaunchAir):
             ) from None
         if len(shape) > 1:
             raise ValueError(f"the fields of Launches must be numbers or 1-D arrays; got {shapes}")
-        count = shape[0] if shape else 1
-        if count == 0:
+        if shape == (0,):
             raise ValueError("Launches must hold at least one launch")
+        self._store(projectile, atmosphere, fields, shape[0] if shape else 1)
+
+    def _store(self, projectile: Projectile, atmosphere: str, fields: dict, count: int) -> None:
+        """Keep valid ``fields`` (numbers or arrays (count,), owned by no one else)."""
         self.projectile, self.atmosphere = projectile, atmosphere
         self._shared: dict[str, float] = {}
         for name, array in fields.items():
             if array.ndim == 0 or array.size == 1 or not np.any(array != array.flat[0]):
                 self._shared[name] = float(array.flat[0])
-            # a read-only view of the copy made above: nobody else holds it or can write it
-            setattr(self, name, np.broadcast_to(array, (count,)))
+            setattr(self, name, np.broadcast_to(array, (count,)))  # a read-only view
+
+    @classmethod
+    def _of_valid(cls, projectile: Projectile, atmosphere: str, fields: dict) -> Launches:
+        """Launches of fields known valid (arrays of launches already checked), unchecked."""
+        launches = cls.__new__(cls)
+        launches._store(projectile, atmosphere, fields, len(next(iter(fields.values()))))
+        return launches
 
     # the fields, for type checkers (set in __init__)
     speed_m_s: np.ndarray
@@ -335,7 +344,7 @@ class Launches(_LaunchAir):
                         "flown together share one projectile and atmosphere"
                     )
         columns = np.array([[getattr(one, name) for name in BOUNDS] for one in launches]).T
-        return cls(first.projectile, atmosphere=first.atmosphere, **dict(zip(BOUNDS, columns)))
+        return cls._of_valid(first.projectile, first.atmosphere, dict(zip(BOUNDS, columns)))
 
     def __len__(self) -> int:
         return self.speed_m_s.size
@@ -352,7 +361,10 @@ class Launches(_LaunchAir):
                 raise IndexError(f"launch {index} of {len(self)}")
             one = {name: float(value) for name, value in self._fields(index).items()}
             return Launch(self.projectile, atmosphere=self.atmosphere, **one)
-        return Launches(self.projectile, atmosphere=self.atmosphere, **self._fields(index))
+        fields = {name: np.array(values, ndmin=1) for name, values in self._fields(index).items()}
+        if not len(fields["speed_m_s"]):
+            raise IndexError(f"no launch of {len(self)} at {index!r}")
+        return Launches._of_valid(self.projectile, self.atmosphere, fields)
 
     def __iter__(self) -> Iterator[Launch]:
         return (self[i] for i in range(len(self)))
