@@ -62,6 +62,7 @@ benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_mks.py
 	$(BIN)/python benchmarks/bench_fire_control.py
 	$(BIN)/python benchmarks/bench_sweeps.py
+	$(BIN)/python benchmarks/bench_figures.py
 
 clean-venv:
 	rm -rf $(VENV)
