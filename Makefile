@@ -20,8 +20,8 @@ $(STAMP): environment.txt pyproject.toml
 # The engines' compiled kernels (numba), built once per version of the sources and cached on
 # disk (harp_analysis.compiled), so that no notebook waits for a compiler.
 $(KERNELS): $(STAMP) $(wildcard src/harp_analysis/*.py)
-	$(BIN)/python -c "from harp_analysis import mks, mlt, sixdof, threedof; \
-		threedof.warm_up(); sixdof.warm_up(); mlt.warm_up(); mks.warm_up()"
+	$(BIN)/python -c "from harp_analysis import mks, mks_improved, mlt, sixdof, threedof; \
+		threedof.warm_up(); sixdof.warm_up(); mlt.warm_up(); mks.warm_up(); mks_improved.warm_up()"
 	touch $@
 
 # Figures go to the committed figures/ only here; notebooks run elsewhere write to a scratch
@@ -63,6 +63,7 @@ benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_fire_control.py
 	$(BIN)/python benchmarks/bench_sweeps.py
 	$(BIN)/python benchmarks/bench_figures.py
+	$(BIN)/python benchmarks/bench_mks_improved.py
 
 clean-venv:
 	rm -rf $(VENV)

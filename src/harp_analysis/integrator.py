@@ -25,6 +25,8 @@ from .compiled import jit
 __all__ = [
     "TABLEAU",
     "STAGES",
+    "DENSE_TABLEAU",
+    "DENSE_STAGES",
     "RADIAL_VELOCITY",
     "ALTITUDE",
     "trial_step",
@@ -52,6 +54,13 @@ TABLEAU = tuple(
     )
 )
 STAGES = DOP853.n_stages
+#: The tableau's extension for scipy's 7th-order dense output of a step: the three extra stages'
+#: weights A_EXTRA (3, DENSE_STAGES) and nodes C_EXTRA, and the interpolant's coefficients D
+#: (4, DENSE_STAGES), for a stepper that reports between its steps as ``solve_ivp``'s t_eval.
+DENSE_TABLEAU = tuple(
+    np.ascontiguousarray(x, dtype=float) for x in (DOP853.A_EXTRA, DOP853.C_EXTRA, DOP853.D)
+)
+DENSE_STAGES = DOP853.D.shape[1]
 _ORDER = DOP853.order
 _ERROR_EXPONENT = -1.0 / (DOP853.error_estimator_order + 1)
 

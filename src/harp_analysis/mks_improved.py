@@ -46,6 +46,13 @@ The one fitted number (:class:`Calibration`): ``reentry_scale`` on beta_re. The 
 taken along the drag-free conic's path, shallower and faster than the real one, and spread as
 an exponential only roughly; one factor absorbs both, fitted by
 :func:`harp_analysis.mks_improvement.fit` on training launches only (1 is the physics alone).
+
+Computation. The loss rate is written once, compiled (:mod:`.compiled`), and both losses call
+it: the ascent's by the trapezoid rule on points spaced geometrically from the launch, the
+re-entry's by marching dL/dtheta = rate(theta, h_inf e^-L) with scipy's DOP853 for one equation,
+compiled (its step control, at rtol 1e-10, and its dense output at the quadrature's points),
+restarted where the descent crosses one of the air's breakpoints, where the rate jumps or kinks
+unseen by a step's error estimate. :func:`warm_up` compiles the kernels ahead of use.
 """
 
 from __future__ import annotations
@@ -56,11 +63,12 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
-from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from . import earth, eci, mks
-from .launch import Launch
+from . import atmosphere, drag, earth, eci, mks
+from .compiled import formula, jit
+from .integrator import DENSE_STAGES, DENSE_TABLEAU, STAGES, TABLEAU
+from .launch import Launch, baseline_chapter_4
 from .trajectory import launch_frame, rotate_about_axis, surface_ranges
 from .validation import ModelValidityWarning, check_range, finite_array, finite_scalar
 
@@ -75,6 +83,7 @@ __all__ = [
     "TOP_OF_ATMOSPHERE_M",
     "AIR_MOMENTUM_SHARE_RANGE",
     "air_momentum_share",
+    "warm_up",
 ]
 
 #: Outside this band of the air's share in the launch's angular momentum
@@ -94,6 +103,11 @@ _FIXED_POINT_TOLERANCE = 1e-10
 _FIXED_POINT_ITERATIONS = 30
 #: Points of the time grid from launch to impact (3-point Gauss-Legendre on each interval).
 _TIME_POINTS = 4001
+#: The re-entry march's tolerances (DOP853's, as solve_ivp's rtol and atol): the loss within
+#: 1e-9 of itself at 1e-13 on the fit's and the judging launches (tests). At 1e-8 it is off by
+#: up to 1e-5 on some: a step's error estimate misses the kinks of the rate that it straddles
+#: (the drag tables' Mach points; the march restarts on the air's breakpoints instead).
+_REENTRY_RTOL, _REENTRY_ATOL = 1e-10, 1e-13
 
 VARIANTS = ("dissertation", "improved")
 
@@ -126,7 +140,7 @@ class _Plane:
 
     @property
     def normal_z(self) -> float:
-        return float(np.cross(self.up, self.along)[2])
+        return float(self.up[0] * self.along[1] - self.up[1] * self.along[0])
 
     def directions(self, theta_rad) -> np.ndarray:
         """Unit vectors (n, 3) at angular ranges ``theta_rad`` (n,)."""
@@ -143,77 +157,317 @@ def _plane(ascent: mks.ModifiedKeplerSolution, correction, latitude_rad) -> _Pla
     return _Plane(up, along / np.linalg.norm(along))
 
 
+# --- the losses along a path, compiled ----------------------------------------------------------
+# ``air`` is what the loss rate needs of a launch (:class:`_Air`): its atmosphere's code and table
+# (:func:`atmosphere.air`), its drag law's code, parameters and table
+# (:func:`drag.drag_coefficient`), and an array of numbers: A / (2 m), the Earth's rotation rate,
+# the flight plane's n_z and the z components of its unit vectors up and along, the day's density
+# factor and gamma R dT. The models are chosen by number at run time: one compilation (10-20 s)
+# serves every pair, for a solve about a fifth slower than kernels compiled for each pair would
+# give (as the 3DOF's; about 10 s a pair).
+_PER_DENSITY, _OMEGA, _NORMAL_Z, _UP_Z, _ALONG_Z, _DENSITY_FACTOR, _SOUND_CHANGE = range(7)
+#: Points of the search for the top of the atmosphere (linear interpolation between them).
+_TOP_POINTS = 2001
+#: Bisections, at most, for the angles where the descent crosses one of the air's breakpoints
+#: (to the last bit of a flight's angular range).
+_CROSSING_BISECTIONS = 80
+
+
+@jit(inline=True)
+def _loss_rate(theta, u, slope, h, air):
+    """d(-ln h)/dtheta (per rad) at angular range ``theta`` of a path with u = 1/r and du/dtheta
+    ``slope`` flown with angular momentum ``h`` (module docstring), and the drag's acceleration
+    across the inertial velocity per rad, dV_tangent/dtheta (m/s)."""
+    air_code, drag_code, table, parameters, table_mach, table_cd, numbers = air
+    r = 1 / u
+    altitude = max(r - earth.RADIUS_M, 0.0)
+    speed_squared = h * h * (u * u + slope * slope)
+    omega, n_z = numbers[_OMEGA], numbers[_NORMAL_Z]
+    z = math.cos(theta) * numbers[_UP_Z] + math.sin(theta) * numbers[_ALONG_Z]
+    # the air's velocity omega x r: its square, and its part along the inertial velocity
+    air_squared = (omega * r) ** 2 * (1 - z * z)
+    along = omega * h * n_z
+    air_speed = math.sqrt(max(speed_squared - 2 * along + air_squared, 0.0))
+    across = math.sqrt(max(air_squared - along * along / speed_squared, 0.0))
+    model_density, model_sound = atmosphere.air(air_code, altitude, table)
+    density, sound = atmosphere.day_air(
+        model_density, model_sound, numbers[_DENSITY_FACTOR], numbers[_SOUND_CHANGE]
+    )
+    cd = drag.drag_coefficient(drag_code, air_speed / sound, parameters, table_mach, table_cd)
+    per_theta = numbers[_PER_DENSITY] * density * cd * (air_speed * r * r / h)  # times dt/dtheta
+    return per_theta * (1 - omega * n_z * r * r / h), per_theta * across
+
+
+@jit(inline=True)
+def _altitude(path, tau, radius, theta):
+    """Altitude (m) at ``theta`` of the single-launch MKS whose constants are ``path``."""
+    return 1 / mks._point(path, 0, tau, theta)[0] - radius
+
+
+@jit(inline=True)
+def _top_angle(path, tau, radius, low, high, rising):
+    """Angular range in [low, high] where the MKS passes TOP_OF_ATMOSPHERE_M going up
+    (``rising``) or down, interpolated linearly between _TOP_POINTS points; ``high`` (the
+    apogee) or ``low`` if it never gets that high."""
+    step = (high - low) / (_TOP_POINTS - 1)
+    angle, altitude = low, _altitude(path, tau, radius, low)
+    if not rising and altitude <= TOP_OF_ATMOSPHERE_M:
+        return low
+    for i in range(1, _TOP_POINTS):
+        previous_angle, previous = angle, altitude
+        angle = high if i == _TOP_POINTS - 1 else low + i * step
+        altitude = _altitude(path, tau, radius, angle)
+        passed = altitude >= TOP_OF_ATMOSPHERE_M if rising else altitude <= TOP_OF_ATMOSPHERE_M
+        if passed:
+            share = (TOP_OF_ATMOSPHERE_M - previous) / (altitude - previous)
+            return previous_angle + share * (angle - previous_angle)
+    return high if rising else low
+
+
+@jit(inline=True)
+def _distances(span):
+    """0 and _QUADRATURE_POINTS distances spaced geometrically from 1e-7 ``span`` to ``span``:
+    the loss quadratures' points, measured from the dense end of the air."""
+    out = np.empty(_QUADRATURE_POINTS + 1)
+    out[0] = 0.0
+    ratio = math.log(1e7) / (_QUADRATURE_POINTS - 1)
+    for i in range(_QUADRATURE_POINTS):
+        out[1 + i] = span * 1e-7 * math.exp(i * ratio)
+    out[-1] = span
+    return out
+
+
+@jit(inline=True)
+def _moments(rate, theta, origin):
+    """Trapezoids on ``theta``: int rate dtheta, and 1 / the mean |theta - origin| weighted by
+    |rate| (the exponential's tau; |rate|, because on a rotating Earth the air can add angular
+    momentum as well as take it), infinite where there is no rate."""
+    loss = weight = moment = 0.0
+    for i in range(1, theta.size):
+        half = 0.5 * (theta[i] - theta[i - 1])
+        low, high = abs(rate[i - 1]), abs(rate[i])
+        loss += half * (rate[i - 1] + rate[i])
+        weight += half * (low + high)
+        moment += half * (low * abs(theta[i - 1] - origin) + high * abs(theta[i] - origin))
+    return loss, weight / moment if moment > 0 else math.inf
+
+
+@jit
+def _ascent_losses(path, tau, h_inf, decay, apogee, radius, air):
+    """Along the MKS's ascent from the launch to the top of the atmosphere, with its own speed
+    (h = h_inf exp(decay e^{-tau theta}), eq 3.23): the loss, its tau (:func:`_moments`,
+    infinite without air) and the cross-track impulse V_tangent (m/s)."""
+    theta = _distances(_top_angle(path, tau, radius, 0.0, apogee, True))
+    rate, cross = np.empty(theta.size), np.empty(theta.size)
+    for i in range(theta.size):
+        u, slope, _ = mks._point(path, 0, tau, theta[i])
+        h = h_inf * math.exp(decay * math.exp(-tau * theta[i]))
+        rate[i], cross[i] = _loss_rate(theta[i], u, slope, h, air)
+    loss, rate_tau = _moments(rate, theta, 0.0)
+    return loss, rate_tau, _moments(cross, theta, 0.0)[0]
+
+
+@jit(inline=True)
+def _descent_rate(theta, loss, path, tau, h_inf, air):
+    """dL/dtheta along the MKS of ``path`` flown with the speed lost so far, h = h_inf e^-L."""
+    u, slope, _ = mks._point(path, 0, tau, theta)
+    return _loss_rate(theta, u, slope, h_inf * math.exp(-loss), air)[0]
+
+
+@jit(inline=True)
+def _march(theta, index, loss, start, stop, y, path, tau, h_inf, air, rtol, atol):
+    """dL/dtheta = :func:`_descent_rate` from L = ``y`` at ``start`` to ``stop``: scipy's DOP853
+    for one equation as solve_ivp(method="DOP853", rtol=rtol, atol=atol, t_eval=theta) runs
+    it (its first step, step control, error estimate and dense output), L written into
+    ``loss`` at the points of ``theta`` from ``index`` on that it passes. Returns L at
+    ``stop``, the next index and whether it got there (a rate that is not finite, or a step
+    too small, stops it). The rate is called from four places, each compiled inline: the
+    fewer, the shorter the compilation."""
+    a, b, c, e3, e5 = TABLEAU
+    a_extra, c_extra, d = DENSE_TABLEAU
+    k, terms = np.empty(DENSE_STAGES), np.empty(7)
+    t = start
+    f = _descent_rate(t, y, path, tau, h_inf, air)
+    # Hairer, Norsett and Wanner's starting step (scipy's select_initial_step)
+    scale = atol + abs(y) * rtol
+    d0, d1 = abs(y) / scale, abs(f) / scale
+    h0 = min(1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1, stop - t)
+    trial = _descent_rate(t + h0, y + h0 * f, path, tau, h_inf, air)
+    d2 = abs(trial - f) / scale / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** (1 / 8)  # 1 / (the error estimator's order + 1)
+    h_abs = min(100 * h0, h1, stop - t)
+    while t < stop:
+        min_step = 10 * (np.nextafter(t, math.inf) - t)
+        h_abs, rejected = max(h_abs, min_step), False
+        while True:
+            t_new = min(t + h_abs, stop)
+            h = t_new - t
+            k[0] = f
+            for stage in range(1, STAGES + 1):  # the last is the solution's, at t + h
+                change = 0.0
+                for j in range(stage):
+                    change += (b[j] if stage == STAGES else a[stage, j]) * k[j]
+                node = t + (h if stage == STAGES else c[stage] * h)
+                k[stage] = _descent_rate(node, y + change * h, path, tau, h_inf, air)
+            y_new, f_new = y + change * h, k[STAGES]
+            scale = atol + max(abs(y), abs(y_new)) * rtol
+            five = three = 0.0
+            for j in range(STAGES + 1):
+                five += e5[j] * k[j]
+                three += e3[j] * k[j]
+            five, three = (five / scale) ** 2, (three / scale) ** 2
+            error = 0.0 if five == 0 and three == 0 else h * five / math.sqrt(five + 0.01 * three)
+            if not math.isfinite(error):
+                return y, index, False
+            if error < 1:
+                factor = 10.0 if error == 0 else min(10.0, 0.9 * error ** (-1 / 8))
+                h_abs = h * (min(1.0, factor) if rejected else factor)
+                break
+            h_abs, rejected = h * max(0.2, 0.9 * error ** (-1 / 8)), True
+            if h_abs < min_step:
+                return y, index, False
+        if index < theta.size and theta[index] <= t_new:  # the interpolant at the points passed
+            for stage in range(STAGES + 1, DENSE_STAGES):
+                change = 0.0
+                for j in range(stage):
+                    change += a_extra[stage - STAGES - 1, j] * k[j]
+                node = t + c_extra[stage - STAGES - 1] * h
+                k[stage] = _descent_rate(node, y + change * h, path, tau, h_inf, air)
+            delta = y_new - y
+            terms[0], terms[1], terms[2] = delta, h * f - delta, 2 * delta - h * (f_new + f)
+            for row in range(4):
+                change = 0.0
+                for j in range(DENSE_STAGES):
+                    change += d[row, j] * k[j]
+                terms[3 + row] = h * change
+            while index < theta.size and theta[index] <= t_new:
+                x = (theta[index] - t) / h
+                value = 0.0
+                for i in range(7):
+                    value = (value + terms[6 - i]) * (x if i % 2 == 0 else 1 - x)
+                loss[index] = value + y
+                index += 1
+        t, y, f = t_new, y_new, f_new
+    return y, index, True
+
+
+@jit(inline=True)
+def _crossing(path, tau, radius, level, low, high):
+    """The two neighbouring angles in [low, high] between which the MKS, above ``level`` at
+    ``low`` and at or below it at ``high``, passes it (bisection to the last bit)."""
+    for _ in range(_CROSSING_BISECTIONS):
+        middle = 0.5 * (low + high)
+        if not low < middle < high:
+            break
+        if _altitude(path, tau, radius, middle) > level:
+            low = middle
+        else:
+            high = middle
+    return low, high
+
+
+@jit
+def _reentry_losses(path, tau, h_inf, apogee, impact, radius, breakpoints, air, rtol, atol):
+    """Along the MKS's descent from the top of the atmosphere to its impact, flown with the
+    speed it loses: the angles (n,), the loss L on them and 1 / its mean distance before the
+    impact (:func:`_moments`). The march (:func:`_march`) stops on the last angle above each of
+    the air's ``breakpoints`` (m, descending) that the descent crosses and starts again on the
+    first below it: there the rate may jump or kink, which the error estimate of a step across
+    it does not see, and each piece's steps see the rate of its own side only."""
+    top = _top_angle(path, tau, radius, apogee, impact, False)
+    theta = impact - _distances(impact - top)[::-1]
+    starts, stops = np.empty(breakpoints.size + 1), np.empty(breakpoints.size + 1)
+    starts[0], count = theta[0], 0
+    for level in breakpoints:  # descending: the first crossed first
+        if 0 < level < _altitude(path, tau, radius, theta[0]):
+            stops[count], starts[count + 1] = _crossing(path, tau, radius, level, theta[0], impact)
+            count += 1
+    stops[count] = impact
+    loss = np.full(theta.size, np.nan)
+    loss[0], index, y = 0.0, 1, 0.0
+    for piece in range(count + 1):
+        y, index, reached = _march(
+            theta, index, loss, starts[piece], stops[piece], y, path, tau, h_inf, air, rtol, atol
+        )
+        if not reached:
+            return theta, loss, math.nan
+    rate = np.empty(theta.size)
+    for i in range(theta.size):
+        rate[i] = _descent_rate(theta[i], loss[i], path, tau, h_inf, air)
+    return theta, loss, _moments(rate, theta, impact)[1]
+
+
 class _Air:
-    """What the loss rate needs of a launch: drag per density, the launch's air on its day,
-    drag law, Earth rotation."""
+    """What the loss rate needs of a launch, its air on its day, drag law, drag per density and
+    Earth rotation as the compiled losses take them (``packed``), and the flight plane."""
 
     def __init__(self, launch: Launch, plane: _Plane):
         self.latitude_rad = launch.latitude_rad
         projectile = launch.projectile
-        self.per_density = projectile.reference_area_m2 / (2 * projectile.mass_kg)
-        self.air = launch.air
-        self.drag_law = projectile.drag_law
-        self.omega = launch.rotation_rate_rad_s
+        model = atmosphere.get_atmosphere(launch.atmosphere)
+        law = projectile.drag_law.kernel_parameters()
+        self.breakpoints_m = np.array(sorted(model.breakpoints_m, reverse=True), dtype=float)
+        numbers = np.zeros(7)
+        numbers[_PER_DENSITY] = projectile.reference_area_m2 / (2 * projectile.mass_kg)
+        numbers[_OMEGA] = launch.rotation_rate_rad_s
+        numbers[_DENSITY_FACTOR], numbers[_SOUND_CHANGE] = launch.day
+        table, parameters, table_mach, table_cd = (
+            np.ascontiguousarray(x, dtype=float) for x in (model.table(), *law[1:])
+        )
+        self.packed = (model.code, law[0], table, parameters, table_mach, table_cd, numbers)
         self.plane = plane
 
-    def rates(self, theta, u, slope, h):
-        """d(-ln h)/dtheta (per rad) at angular ranges ``theta`` of a path u(theta) with
-        du/dtheta ``slope`` flown with angular momentum ``h`` (module docstring), and the
-        drag's acceleration across the inertial velocity per rad, dV_tangent/dtheta (m/s)."""
-        r = 1 / u
-        altitude = np.maximum(r - earth.RADIUS_M, 0.0)
-        speed_squared = h**2 * (u**2 + slope**2)
-        omega, n_z = self.omega, self.plane.normal_z
-        cos_latitude_squared = 1 - self.plane.directions(theta)[:, 2] ** 2
-        # the air's velocity omega x r: its square, and its part along the inertial velocity
-        air_squared = (omega * r) ** 2 * cos_latitude_squared
-        along = omega * h * n_z
-        air_speed = np.sqrt(np.maximum(speed_squared - 2 * along + air_squared, 0.0))
-        across = np.sqrt(np.maximum(air_squared - along**2 / speed_squared, 0.0))
-        density, sound = self.air(altitude)
-        mach = air_speed / sound
-        per_time = self.per_density * density * self.drag_law(mach)
-        per_time *= air_speed * r**2 / h  # times dt/dtheta
-        return per_time * (1 - omega * n_z * r**2 / h), per_time * across
+    @property
+    def plane(self) -> _Plane:
+        return self._plane
+
+    @plane.setter
+    def plane(self, plane: _Plane):
+        self._plane = plane
+        numbers = self.packed[-1]
+        numbers[_NORMAL_Z], numbers[_UP_Z], numbers[_ALONG_Z] = (
+            plane.normal_z,
+            plane.up[2],
+            plane.along[2],
+        )
 
 
-def _loss_and_rate(rate, theta) -> tuple[float, float]:
-    """int rate dtheta, and 1 / the mean |theta| weighted by |rate| (the exponential's tau;
-    |rate|, because on a rotating Earth the air can add angular momentum as well as take it)."""
-    size = np.abs(rate)
-    mean = float(np.trapezoid(size * np.abs(theta), theta) / np.trapezoid(size, theta))
-    return float(np.trapezoid(rate, theta)), 1 / mean
+def _path(solution: mks.ModifiedKeplerSolution) -> tuple:
+    """A single-launch MKS as the compiled losses take it: its constants (as its own kernels
+    take them), tau and h_inf."""
+    return solution._table, float(solution.tau[0, 0]), float(solution.h_inf[0, 0])
+
+
+def _along_ascent(solution: mks.ModifiedKeplerSolution, air: _Air) -> tuple[float, float, float]:
+    """The loss along ``solution``'s ascent with its own speed, its tau (infinite without air)
+    and the cross-track impulse V_tangent (m/s)."""
+    decay = float(solution.beta[0, 0] * solution.decay_scale[0, 0])
+    apogee, radius = float(solution.apogee_angle), float(solution.radius_m[0, 0])
+    return _ascent_losses(*_path(solution), decay, apogee, radius, air.packed)
+
+
+def _along_descent(
+    ascent: mks.ModifiedKeplerSolution,
+    air: _Air,
+    rtol: float = _REENTRY_RTOL,
+    atol: float = _REENTRY_ATOL,
+):
+    """The angles from the top of the atmosphere to ``ascent``'s impact (n,), the loss on them
+    along its descent flown with the speed it loses (marched to ``rtol`` and ``atol``), and
+    1 / its mean distance before the impact (rad)."""
+    impact, apogee = float(ascent.impact_angle), float(ascent.apogee_angle)
+    radius = float(ascent.radius_m[0, 0])
+    return _reentry_losses(
+        *_path(ascent), apogee, impact, radius, air.breakpoints_m, air.packed, rtol, atol
+    )
 
 
 def _scalar(value) -> float:
     """The one number of a single launch's (1,) or () result."""
     return float(np.ravel(value)[0])
-
-
-def _ascent_grid(top_rad: float) -> np.ndarray:
-    return np.concatenate([[0.0], np.geomspace(top_rad * 1e-7, top_rad, _QUADRATURE_POINTS)])
-
-
-def _top_angle(solution: mks.ModifiedKeplerSolution, low: float, high: float, rising: bool):
-    """Angular range in [low, high] where ``solution`` passes TOP_OF_ATMOSPHERE_M going up
-    (``rising``) or down; ``high`` (the apogee) or ``low`` if it never gets that high."""
-    grid = np.linspace(low, high, 2001)
-    altitude = np.ravel(solution.altitude(grid))
-    if altitude.max() <= TOP_OF_ATMOSPHERE_M:
-        return high if rising else low
-    if rising:
-        above = np.argmax(altitude >= TOP_OF_ATMOSPHERE_M)
-        return float(
-            np.interp(
-                TOP_OF_ATMOSPHERE_M, altitude[above - 1 : above + 1], grid[above - 1 : above + 1]
-            )
-        )
-    below = np.argmax(altitude <= TOP_OF_ATMOSPHERE_M)
-    return float(
-        np.interp(
-            -TOP_OF_ATMOSPHERE_M, -altitude[below - 1 : below + 1], grid[below - 1 : below + 1]
-        )
-    )
 
 
 def _with_tangent(correction, tangent_speed_m_s: float, latitude_rad: float):
@@ -248,15 +502,9 @@ def _ascent_decay(correction, air: _Air, n_terms: int):
         )
     )
     for _ in range(_FIXED_POINT_ITERATIONS):
-        top = _top_angle(solution, 0.0, float(solution.apogee_angle), rising=True)
-        theta = _ascent_grid(top)
-        rate, cross_rate = air.rates(
-            theta, solution.u(theta), solution.du_dtheta(theta), solution.angular_momentum(theta)
-        )
-        if not np.any(rate):  # no air: beta = 0 and the MKS is the conic, whatever tau
+        loss, new_tau, cross_impulse = _along_ascent(solution, air)
+        if math.isinf(new_tau):  # no air: beta = 0 and the MKS is the conic, whatever tau
             break
-        loss, new_tau = _loss_and_rate(rate, theta)
-        cross_impulse = float(np.trapezoid(cross_rate, theta))
         correction = _with_tangent(correction, cross_impulse, air.latitude_rad)
         air.plane = _plane(solution, correction, air.latitude_rad)  # V_tangent may tilt it
         h0 = float(correction.initial_angular_momentum_m2_s)
@@ -288,31 +536,41 @@ def _reentry_decay(ascent: mks.ModifiedKeplerSolution, air: _Air) -> tuple[float
     """(beta_re, tau_re): the loss along ``ascent``'s descent from the top of the atmosphere to
     its impact, integrated forward with the speed it loses, and 1 / its mean distance before
     the impact (rad)."""
-    impact, apogee = float(ascent.impact_angle), float(ascent.apogee_angle)
-    top = _top_angle(ascent, apogee, impact, rising=False)
-    before = np.geomspace(impact - top, (impact - top) * 1e-7, _QUADRATURE_POINTS)
-    theta = np.concatenate([impact - before, [impact]])
-    h_inf = float(ascent.h_inf[0, 0])
-
-    def rate(angle, loss):  # dL/dtheta with the speed lost so far, h = h_inf e^-L
-        point = np.atleast_1d(angle)
-        return air.rates(point, ascent.u(point), ascent.du_dtheta(point), h_inf * np.exp(-loss))[0]
-
-    # 1e-8 moves the impact point by 0.1 mm against 1e-10, in two thirds of the time
-    marched = solve_ivp(
-        rate, (theta[0], theta[-1]), [0.0], method="DOP853", t_eval=theta, rtol=1e-8, atol=1e-11
-    )
-    loss = marched.y[0] if marched.success else np.full_like(theta, np.nan)
+    _, loss, tau = _along_descent(ascent, air)
     if not np.all(np.isfinite(loss)):
         raise ValueError(
             "the improved MKS's re-entry decay has no finite solution for this launch: near a "
             "vertical in the inertial frame the air's angular momentum omega n_z r^2 rivals h"
         )
     total = float(loss[-1])
-    if total == 0.0:
-        return 0.0, math.inf
-    slope = air.rates(theta, ascent.u(theta), ascent.du_dtheta(theta), h_inf * np.exp(-loss))[0]
-    return total, _loss_and_rate(slope, impact - theta)[1]
+    return (0.0, math.inf) if total == 0.0 else (total, tau)
+
+
+@formula
+def _reentry_terms(rates, amplitudes, impact, theta):
+    """u_re, du_re/dtheta, d2u_re/dtheta2 of the re-entry terms (``rates`` n tau_re and
+    ``amplitudes`` B_n) plus the conic that keeps u(0) and u'(0) the launch's, for an impact at
+    ``impact``: of arrays ``theta`` in numpy, of a number in compiled code."""
+    value = slope = curvature = 0.0 * theta
+    at_launch = amplitudes * np.exp(-rates * impact)
+    cos_shift, sin_shift = -at_launch.sum(), -(rates * at_launch).sum()
+    for rate, amplitude in zip(rates, amplitudes):
+        term = amplitude * np.exp(rate * (theta - impact))
+        value, slope, curvature = value + term, slope + rate * term, curvature + rate**2 * term
+    sin, cos = np.sin(theta), np.cos(theta)
+    return (
+        value + sin_shift * sin + cos_shift * cos,
+        slope + sin_shift * cos - cos_shift * sin,
+        curvature - sin_shift * sin - cos_shift * cos,
+    )
+
+
+@jit
+def _impact_excess(theta, path, tau, rates, amplitudes, inverse_radius):
+    """u - 1/r0 at ``theta`` of the solution (the ascent's MKS ``path`` and the re-entry terms)
+    whose impact is at ``theta``: zero at the impact (ImprovedSolution._impact_angle)."""
+    ascent = mks._point(path, 0, tau, theta)[0]
+    return ascent + _reentry_terms(rates, amplitudes, theta, theta)[0] - inverse_radius
 
 
 def _cumulative_time(theta, integrand_of):
@@ -363,21 +621,8 @@ class ImprovedSolution:
 
     # --- the re-entry terms and the solution ---------------------------------------------------
     def _reentry_terms(self, theta, impact):
-        """u_re, du_re/dtheta, d2u_re/dtheta2 of the re-entry terms plus the conic that keeps
-        u(0) and u'(0) the launch's, for an impact at ``impact``."""
-        theta = np.asarray(theta, dtype=float)
-        value = slope = curvature = np.zeros_like(theta)
-        at_launch = self._amplitudes * np.exp(-self._rates * impact)
-        cos_shift, sin_shift = -at_launch.sum(), -(self._rates * at_launch).sum()
-        for rate, amplitude in zip(self._rates, self._amplitudes):
-            term = amplitude * np.exp(rate * (theta - impact))
-            value, slope, curvature = value + term, slope + rate * term, curvature + rate**2 * term
-        sin, cos = np.sin(theta), np.cos(theta)
-        return (
-            value + sin_shift * sin + cos_shift * cos,
-            slope + sin_shift * cos - cos_shift * sin,
-            curvature - sin_shift * sin - cos_shift * cos,
-        )
+        """:func:`_reentry_terms` of this solution at ``theta`` for an impact at ``impact``."""
+        return _reentry_terms(self._rates, self._amplitudes, impact, np.asarray(theta, dtype=float))
 
     def _impact_angle(self) -> float:
         """Where u returns to 1/r0 descending; the re-entry terms equal sum B_n there, so
@@ -386,14 +631,11 @@ class ImprovedSolution:
         if self._amplitudes.size == 0:
             return high
         high += 0.05 * (high - low)  # a re-entry gain (beta_re < 0) lands a little further
-
-        def excess(theta):
-            return (
-                _scalar(self.ascent.u(theta) + self._reentry_terms(theta, theta)[0])
-                - 1 / self.radius_m
-            )
-
-        return float(brentq(excess, low, high, xtol=1e-15, rtol=4 * np.finfo(float).eps))
+        path, tau, _ = _path(self.ascent)
+        constants = (path, tau, self._rates, self._amplitudes, 1 / self.radius_m)
+        return float(
+            brentq(_impact_excess, low, high, constants, xtol=1e-15, rtol=4 * np.finfo(float).eps)
+        )
 
     # Functions of the angular range return the shape of ``theta_rad``.
     def u(self, theta_rad):
@@ -529,7 +771,11 @@ def air_momentum_share(launch: Launch) -> float:
     the flight plane over the launch's (gun velocity Vrel + omega x r0). It sets the in-plane
     loss factor 1 - omega n_z r^2/h; outside :data:`AIR_MOMENTUM_SHARE_RANGE` the air adds
     or takes a large share of h and the improved MKS is worse than the text's."""
-    correction = _correction(launch)
+    return _air_momentum_share(launch, _correction(launch))
+
+
+def _air_momentum_share(launch: Launch, correction) -> float:
+    """:func:`air_momentum_share` of ``launch`` and its ``correction``."""
     velocity = np.ravel(correction.relative_m_s + correction.surface_m_s)
     up = np.ravel(launch_frame(launch.latitude_rad, 0.0, 0.0)[0]) * earth.RADIUS_M
     momentum = np.cross(up, velocity)
@@ -548,7 +794,7 @@ def solve(
     correction = _correction(launch)
     first = eci.solution_for(correction, n_terms=n_terms, warn=False)
     air = _Air(launch, _plane(first, correction, launch.latitude_rad))
-    share = air_momentum_share(launch)
+    share = _air_momentum_share(launch, correction)
     low, high = AIR_MOMENTUM_SHARE_RANGE
     if not low < share <= high:
         warnings.warn(
@@ -574,3 +820,9 @@ def flight(
     raise ValueError(
         f"unknown variant {variant!r}; expected one of {', '.join(map(repr, VARIANTS))}"
     )
+
+
+def warm_up() -> None:
+    """Compile the improved MKS's kernels now (or load them from the on-disk cache), not at
+    first use; one compilation serves every atmosphere and drag law."""
+    solve(baseline_chapter_4(45.0))
