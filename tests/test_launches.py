@@ -193,3 +193,15 @@ def test_engines_refuse_or_warn_per_launch_and_say_which():
         mks.for_launch(windy)
     messages = [str(w.message) for w in caught if issubclass(w.category, ModelValidityWarning)]
     assert any("cross_wind_m_s in 1 of 3 launches (first [1] = 5)" in m for m in messages)
+
+
+def test_the_improved_mks_of_launches_is_that_of_each_launch():
+    from harp_analysis import mks_improved
+
+    launches = rotating(ELEVATIONS[:2], BEARINGS[:2])
+    together = mks_improved.solve(launches)
+    assert len(together) == 2
+    for solution, launch in zip(together, launches):
+        alone = mks_improved.solve(launch)
+        assert solution.impact_range_m == alone.impact_range_m
+        assert solution.impact_time_s == alone.impact_time_s

@@ -61,6 +61,7 @@ import math
 import warnings
 from dataclasses import dataclass, replace
 from functools import cached_property
+from typing import overload
 
 import numpy as np
 from scipy.optimize import brentq
@@ -68,7 +69,7 @@ from scipy.optimize import brentq
 from . import atmosphere, drag, earth, eci, mks
 from .compiled import formula, jit
 from .integrator import DENSE_STAGES, DENSE_TABLEAU, STAGES, TABLEAU
-from .launch import Launch, baseline_chapter_4
+from .launch import Launch, Launches, baseline_chapter_4
 from .trajectory import launch_frame, rotate_about_axis, surface_ranges
 from .validation import ModelValidityWarning, check_range, finite_array, finite_scalar
 
@@ -784,13 +785,23 @@ def _air_momentum_share(launch: Launch, correction) -> float:
     )
 
 
+@overload
 def solve(
-    launch: Launch, calibration: Calibration = UNCALIBRATED, *, n_terms: int = 3
-) -> ImprovedSolution:
+    launch: Launch, calibration: Calibration = ..., *, n_terms: int = ...
+) -> ImprovedSolution: ...
+@overload
+def solve(
+    launch: Launches, calibration: Calibration = ..., *, n_terms: int = ...
+) -> list[ImprovedSolution]: ...
+def solve(launch, calibration=UNCALIBRATED, *, n_terms=3):
     """The improved MKS of ``launch``: the self-consistent ascent decay and the re-entry decay
-    (module docstring), beta_re scaled by ``calibration``."""
+    (module docstring), beta_re scaled by ``calibration``. For
+    :class:`~harp_analysis.launch.Launches`, one solution per launch, in order (each is a
+    fixed point of its own)."""
     if not isinstance(calibration, Calibration):
         raise TypeError(f"calibration must be a Calibration; got {type(calibration).__name__}")
+    if isinstance(launch, Launches):
+        return [solve(one, calibration, n_terms=n_terms) for one in launch]
     correction = _correction(launch)
     first = eci.solution_for(correction, n_terms=n_terms, warn=False)
     air = _Air(launch, _plane(first, correction, launch.latitude_rad))
