@@ -20,8 +20,9 @@ $(STAMP): environment.txt pyproject.toml
 # The engines' compiled kernels (numba), built once per version of the sources and cached on
 # disk (harp_analysis.compiled), so that no notebook waits for a compiler.
 $(KERNELS): $(STAMP) $(wildcard src/harp_analysis/*.py)
-	$(BIN)/python -c "from harp_analysis import mks, mks_improved, mlt, sixdof, threedof; \
-		threedof.warm_up(); sixdof.warm_up(); mlt.warm_up(); mks.warm_up(); mks_improved.warm_up()"
+	$(BIN)/python -c "from harp_analysis import firing_solver, mks, mks_improved, mlt, sixdof, threedof; \
+		threedof.warm_up(); sixdof.warm_up(); mlt.warm_up(); mks.warm_up(); mks_improved.warm_up(); \
+		firing_solver.warm_up()"
 	touch $@
 
 # Figures go to the committed figures/ only here; notebooks run elsewhere write to a scratch

@@ -44,9 +44,10 @@ import numpy as np
 
 from . import earth, mks
 from .atmosphere import TEXT_DECAY_CONSTANT_PER_M
+from .compiled import formula, select
 from .launch import Launch, Launches
 from .sites import get_site
-from .trajectory import launch_frame
+from .trajectory import cross, dot, launch_axes, launch_frame
 from .validation import check_choice, check_range, finite_array
 
 __all__ = [
@@ -66,6 +67,7 @@ __all__ = [
     "tangent_direction",
     "elevation_azimuth",
     "initial_angular_momentum",
+    "corrected_launch",
     "launch_correction",
     "eci_solution",
     "solution_for",
@@ -74,8 +76,6 @@ __all__ = [
     "site_surface_speed_km_s",
     "inertial_positions",
 ]
-
-_Z_AXIS = np.array([0.0, 0.0, 1.0])
 
 
 def _check_launch(speed_m_s, elevation_rad, bearing_rad, latitude_rad):
@@ -111,12 +111,161 @@ def _check_latitude(latitude_rad):
     )
 
 
-def _dot(a, b):
-    return np.sum(a * b, axis=0)
+def _components(vectors) -> tuple:
+    """The x, y and z rows of (3, ...) vectors."""
+    array = np.asarray(vectors, dtype=float)
+    return array[0], array[1], array[2]
 
 
-def _norm(a):
-    return np.sqrt(_dot(a, a))
+@formula
+def _surface(up, rotation_rate_rad_s, radius_m):
+    """omega x r0 of component triples: omega along the Earth's axis (z), r0 = radius up."""
+    scale = rotation_rate_rad_s * radius_m
+    return -scale * up[1], scale * up[0], 0.0 * up[2]
+
+
+@formula
+def _misalignment(relative, inertial):
+    cosine = dot(relative, inertial) / np.sqrt(dot(relative, relative) * dot(inertial, inertial))
+    return np.arccos(np.minimum(np.maximum(cosine, -1.0), 1.0))
+
+
+@formula
+def _speed_ratio_squared(relative, inertial):
+    return dot(relative, relative) / dot(inertial, inertial)
+
+
+@formula
+def _tangent_speed(
+    drag_area_m2, density, mass_kg, misalignment, relative_speed, climb, decay_constant_per_m
+):
+    return (
+        drag_area_m2
+        * density
+        * np.sin(misalignment)
+        * relative_speed
+        / (2 * mass_kg * decay_constant_per_m * np.sin(climb))
+    )
+
+
+@formula
+def _tangent_direction(relative, inertial):
+    speed = np.sqrt(dot(inertial, inertial))
+    along = dot(relative, inertial) / speed  # Vrel's component along V
+    across = (
+        along * inertial[0] / speed - relative[0],
+        along * inertial[1] / speed - relative[1],
+        along * inertial[2] / speed - relative[2],
+    )
+    size = np.sqrt(dot(across, across))
+    inverse = select(size > 0, 1.0 / select(size > 0, size, 1.0), 0.0 * size)
+    return inverse * across[0], inverse * across[1], inverse * across[2]
+
+
+@formula
+def _elevation_azimuth(velocity, up, east):
+    north = cross(up, east)
+    speed = np.sqrt(dot(velocity, velocity))
+    elevation = np.arcsin(np.minimum(np.maximum(dot(velocity, up) / speed, -1.0), 1.0))
+    azimuth = np.arctan2(dot(velocity, east), dot(velocity, north)) % (2 * math.pi)
+    return elevation, azimuth
+
+
+@formula
+def _initial_angular_momentum(speed_m_s, elevation_rad, radius_m):
+    return speed_m_s * radius_m * np.cos(elevation_rad)
+
+
+@formula
+def corrected_launch(
+    speed_m_s,
+    elevation_rad,
+    bearing_rad,
+    latitude_rad,
+    drag_area_m2,
+    mass_kg,
+    surface_density_kg_m3,
+    decay_constant_per_m,
+    rotation_rate_rad_s,
+    radius_m,
+    include_tangent,
+    tangent_sine_corrected,
+    beta_at_launch,
+    tau_at_launch,
+    ratio_at_launch,
+):
+    """Eqs 5.1-5.8 and 6.11-6.16 of guns at the launch point (longitude 0), written once for
+    numpy (arrays of one shape, the model's flags plain bools) and compiled code (numbers):
+    Vrel, omega x r0, mu, the corrected speed, elevation and azimuth, V_tangent, the launch
+    velocity, its speed, elevation and azimuth, (Vrel/V)^2, beta, tau and L0, vectors as
+    component triples (:func:`launch_correction` names them). The flags are
+    :class:`EciModel`'s choices: ``include_tangent``, ``tangent_sine == "corrected"``,
+    ``beta_elevation == "launch"``, ``tau_elevation == "launch"``, ``speed_ratio == "launch"``."""
+    up, downrange, east = launch_axes(latitude_rad, 0.0 * latitude_rad, bearing_rad)
+    horizontal, vertical = speed_m_s * np.cos(elevation_rad), speed_m_s * np.sin(elevation_rad)
+    relative = (
+        horizontal * downrange[0] + vertical * up[0],
+        horizontal * downrange[1] + vertical * up[1],
+        horizontal * downrange[2] + vertical * up[2],
+    )
+    surface = _surface(up, rotation_rate_rad_s, radius_m)
+    corrected = (relative[0] + surface[0], relative[1] + surface[1], relative[2] + surface[2])
+    mu = _misalignment(relative, corrected)
+    corrected_elevation, corrected_azimuth = _elevation_azimuth(corrected, up, east)
+    climb = select(tangent_sine_corrected, corrected_elevation, elevation_rad)
+    relative_speed = np.sqrt(dot(relative, relative))
+    tangent = _tangent_speed(
+        drag_area_m2,
+        surface_density_kg_m3,
+        mass_kg,
+        mu,
+        relative_speed,
+        climb,
+        decay_constant_per_m,
+    )
+    push = select(include_tangent, tangent, 0.0 * tangent)
+    direction = _tangent_direction(relative, corrected)
+    velocity = (
+        corrected[0] + push * direction[0],
+        corrected[1] + push * direction[1],
+        corrected[2] + push * direction[2],
+    )
+    elevation, azimuth = _elevation_azimuth(velocity, up, east)
+    ratio_of = (
+        select(ratio_at_launch, velocity[0], corrected[0]),
+        select(ratio_at_launch, velocity[1], corrected[1]),
+        select(ratio_at_launch, velocity[2], corrected[2]),
+    )
+    air = (ratio_of[0] - surface[0], ratio_of[1] - surface[1], ratio_of[2] - surface[2])
+    beta = mks.beta_formula(
+        drag_area_m2,
+        surface_density_kg_m3,
+        1.0,
+        mass_kg,
+        select(beta_at_launch, elevation, elevation_rad),
+        decay_constant_per_m,
+    )
+    tau = mks.decay_rate_tau(
+        select(tau_at_launch, elevation, corrected_elevation), decay_constant_per_m, radius_m
+    )
+    speed = np.sqrt(dot(velocity, velocity))
+    return (
+        relative,
+        surface,
+        mu,
+        np.sqrt(dot(corrected, corrected)),
+        corrected_elevation,
+        corrected_azimuth,
+        tangent,
+        velocity,
+        speed,
+        elevation,
+        azimuth,
+        _speed_ratio_squared(air, ratio_of),
+        beta,
+        tau,
+        _initial_angular_momentum(speed, elevation, radius_m),
+    )
 
 
 def surface_velocity(
@@ -125,8 +274,8 @@ def surface_velocity(
     """Eq 6.16: omega x r0 (m/s), the launch site's velocity, a (3, ...) vector due east of
     magnitude omega r0 cos(latitude): 451.8 m/s at Barbados."""
     latitude = _check_latitude(latitude_rad)
-    up, _, _ = launch_frame(latitude, 0.0, 0.0)
-    return np.cross(rotation_rate_rad_s * _Z_AXIS, radius_m * up, axis=0)
+    up, _, _ = launch_axes(latitude, 0.0 * latitude, 0.0 * latitude)
+    return np.array(_surface(up, rotation_rate_rad_s, radius_m))
 
 
 def relative_velocity(speed_m_s, elevation_rad, bearing_rad, latitude_rad):
@@ -141,13 +290,12 @@ def relative_velocity(speed_m_s, elevation_rad, bearing_rad, latitude_rad):
 
 def misalignment_angle(relative_m_s, inertial_m_s):
     """Ch. 5 B: mu (rad), the angle between the drag line (Vrel) and the inertial velocity V."""
-    cosine = _dot(relative_m_s, inertial_m_s) / (_norm(relative_m_s) * _norm(inertial_m_s))
-    return np.arccos(np.clip(cosine, -1.0, 1.0))
+    return _misalignment(_components(relative_m_s), _components(inertial_m_s))
 
 
 def speed_ratio_squared(relative_m_s, inertial_m_s):
     """(Vrel/V)^2 of eqs 5.2-5.3, exactly, from the two vectors."""
-    return _dot(relative_m_s, relative_m_s) / _dot(inertial_m_s, inertial_m_s)
+    return _speed_ratio_squared(_components(relative_m_s), _components(inertial_m_s))
 
 
 def speed_ratio_squared_eq_5_3(
@@ -163,9 +311,10 @@ def speed_ratio_squared_eq_5_3(
     exactly, not an expansion: omega x r is due east with magnitude omega r cos(LA)."""
     latitude = _check_latitude(latitude_rad)
     _, _, east = launch_frame(latitude, 0.0, 0.0)
-    v_squared = _dot(inertial_m_s, inertial_m_s)
+    v_squared = np.sum(inertial_m_s * inertial_m_s, axis=0)
     surface = rotation_rate_rad_s * radius_m * np.cos(latitude)
-    return 1 - 2 * _dot(inertial_m_s, east) * surface / v_squared + surface**2 / v_squared
+    eastward = np.sum(inertial_m_s * east, axis=0)
+    return 1 - 2 * eastward * surface / v_squared + surface**2 / v_squared
 
 
 def tangent_speed(
@@ -180,37 +329,34 @@ def tangent_speed(
     """Eq 5.8: V_tangent = Cd A rho0 sin(mu) Vrel / (2 m k sin(phi_rel)) (m/s), the integral of
     the cross-track drag (eq 5.5) along the straight climb a = Vrel sin(phi_rel) t (eq 5.7);
     ``drag_area_m2`` is Cd A."""
-    return (
-        np.asarray(drag_area_m2)
-        * surface_density_kg_m3
-        * np.sin(misalignment_rad)
-        * relative_speed_m_s
-        / (2 * mass_kg * decay_constant_per_m * np.sin(relative_elevation_rad))
+    return _tangent_speed(
+        np.asarray(drag_area_m2),
+        surface_density_kg_m3,
+        mass_kg,
+        misalignment_rad,
+        relative_speed_m_s,
+        relative_elevation_rad,
+        decay_constant_per_m,
     )
 
 
 def tangent_direction(relative_m_s, inertial_m_s):
     """Unit vector of V_tangent (eq 6.15): normal to V in the plane of Vrel and V, on the side
     AWAY from Vrel, the side of the cross-track drag -Vrel (module docstring). Zero if mu = 0."""
-    unit = inertial_m_s / _norm(inertial_m_s)
-    across = -(relative_m_s - _dot(relative_m_s, unit) * unit)
-    size = _norm(across)
-    return np.divide(across, size, out=np.zeros_like(across), where=size > 0)
+    return np.array(_tangent_direction(_components(relative_m_s), _components(inertial_m_s)))
 
 
 def elevation_azimuth(velocity_m_s, latitude_rad):
     """Elevation above the local horizon and azimuth from true north (rad, in [0, 2 pi)) of a
     (3, ...) inertial velocity at the launch point (longitude 0) on ``latitude_rad``."""
-    up, _, east = launch_frame(_check_latitude(latitude_rad), 0.0, 0.0)
-    north = np.cross(up, east, axis=0)
-    elevation = np.arcsin(_dot(velocity_m_s, up) / _norm(velocity_m_s))
-    azimuth = np.arctan2(_dot(velocity_m_s, east), _dot(velocity_m_s, north)) % (2 * math.pi)
-    return elevation, azimuth
+    latitude = _check_latitude(latitude_rad)
+    up, _, east = launch_axes(latitude, 0.0 * latitude, 0.0 * latitude)
+    return _elevation_azimuth(_components(velocity_m_s), up, east)
 
 
 def initial_angular_momentum(speed_m_s, elevation_rad, radius_m=earth.RADIUS_M):
     """Eq 6.13: L0 = |V| r0 cos(phi) (m^2/s), per unit mass."""
-    return speed_m_s * radius_m * np.cos(elevation_rad)
+    return _initial_angular_momentum(speed_m_s, elevation_rad, radius_m)
 
 
 @dataclass(frozen=True)
@@ -249,6 +395,17 @@ class EciModel:
             ("beta_column", ("beta", "beta_cos_mu")),
         ):
             check_choice(getattr(self, name), name, choices)
+
+    @property
+    def flags(self) -> tuple[bool, bool, bool, bool, bool]:
+        """The choices as :func:`corrected_launch`'s flags, in its order."""
+        return (
+            self.include_tangent,
+            self.tangent_sine == "corrected",
+            self.beta_elevation == "launch",
+            self.tau_elevation == "launch",
+            self.speed_ratio == "launch",
+        )
 
 
 #: The project's model: eqs 5.8 and 6.11-6.15 as printed, except the decay (eq 3.23).
@@ -368,57 +525,58 @@ def launch_correction(
         low=0.0,
         unit="kg/m^3",
     )
-    speed_m_s, elevation_rad, bearing_rad, latitude_rad = np.broadcast_arrays(
+    speed, elevation, bearing, latitude, mass, drag_area, density = np.broadcast_arrays(
         *_check_launch(speed_m_s, elevation_rad, bearing_rad, latitude_rad),
         mass,
         drag_area,
         density,
-    )[:4]
-    relative = relative_velocity(speed_m_s, elevation_rad, bearing_rad, latitude_rad)
-    surface = surface_velocity(
-        latitude_rad, rotation_rate_rad_s=rotation_rate_rad_s, radius_m=radius_m
     )
-    corrected = relative + surface
-    mu = misalignment_angle(relative, corrected)
-    corrected_elevation, corrected_azimuth = elevation_azimuth(corrected, latitude_rad)
-    climb = {"gun": elevation_rad, "corrected": corrected_elevation}[model.tangent_sine]
-    tangent = tangent_speed(
-        drag_area, density, mass, mu, _norm(relative), climb, decay_constant_per_m
-    )
-    velocity = corrected + model.include_tangent * tangent * tangent_direction(relative, corrected)
-    elevation, azimuth = elevation_azimuth(velocity, latitude_rad)
-    ratio_of = {"corrected": corrected, "launch": velocity}[model.speed_ratio]
-    beta = mks.decay_factor_beta(
-        drag_area,
-        density,
-        1.0,
-        mass,
-        {"gun": elevation_rad, "launch": elevation}[model.beta_elevation],
-        decay_constant_per_m,
-    )
-    tau = mks.decay_rate_tau(
-        {"corrected": corrected_elevation, "launch": elevation}[model.tau_elevation],
-        decay_constant_per_m,
-        radius_m,
-    )
-    speed = _norm(velocity)
-    return LaunchCorrection(
-        model,
+    (
         relative,
         surface,
         mu,
-        _norm(corrected),
+        corrected_speed,
         corrected_elevation,
         corrected_azimuth,
         tangent,
         velocity,
-        speed,
-        elevation,
-        azimuth,
-        speed_ratio_squared(ratio_of - surface, ratio_of),
+        launch_speed,
+        launch_elevation,
+        launch_azimuth,
+        ratio,
         beta,
         tau,
-        initial_angular_momentum(speed, elevation, radius_m),
+        momentum,
+    ) = corrected_launch(
+        speed,
+        elevation,
+        bearing,
+        latitude,
+        drag_area,
+        mass,
+        density,
+        decay_constant_per_m,
+        rotation_rate_rad_s,
+        radius_m,
+        *model.flags,
+    )
+    return LaunchCorrection(
+        model,
+        np.array(relative),
+        np.array(surface),
+        mu,
+        corrected_speed,
+        corrected_elevation,
+        corrected_azimuth,
+        tangent,
+        np.array(velocity),
+        launch_speed,
+        launch_elevation,
+        launch_azimuth,
+        ratio,
+        beta,
+        tau,
+        momentum,
     )
 
 
@@ -525,7 +683,7 @@ def solution_for(
 
 def site_surface_speed_km_s(site: str) -> float:
     """Speed of the Earth's surface at ``site`` (km/s), eq 6.16's 0.4518 km/s at Barbados."""
-    return float(_norm(surface_velocity(get_site(site).latitude_rad))) / 1e3
+    return float(np.linalg.norm(surface_velocity(get_site(site).latitude_rad))) / 1e3
 
 
 def inertial_positions(

@@ -21,13 +21,16 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import overload
 
 import numpy as np
 from scipy import optimize
 
-from . import earth, eci, mks, threedof
-from .launch import Launch
+from . import earth, eci, firing_solver, mks, threedof
+from .atmosphere import TEXT_DECAY_CONSTANT_PER_M
+from .launch import Launch, Launches
 from .projectiles import HP
 from .sites import BARBADOS
 from .trajectory import TruncatedFlightWarning, launch_frame, rotate_about_axis
@@ -47,6 +50,7 @@ __all__ = [
     "InterceptWindow",
     "intercept",
     "intercept_window",
+    "raid_windows",
     "shoot_3dof",
     "destination",
     "raid",
@@ -58,31 +62,15 @@ __all__ = [
 ]
 
 BRANCHES = ("descending", "ascending")
-#: The bracketing grid of elevations (deg): every half degree, short of the vertical, where
-#: the MKS has no angular momentum.
-_GRID_STEP_DEG = 0.5
-_GRID_TOP_DEG = 89.5
-#: The grid leaves out elevations whose beta x decay scale exceeds this: the angular momentum
-#: decays to e^-8 of its launch value there, and the closed form's constants cancel
-#: (mks.ModifiedKeplerSolution refuses them) long before beta reaches its validity limit 0.25.
-_GRID_MAX_DECAY = 8.0
-#: How far the refinement may turn the bearing from the great-circle one (rad): the Earth's
-#: rotation deflects the shot by far less.
-_BEARING_SPAN_RAD = math.radians(30.0)
-#: A refined root must put the MKS trajectory this close to the target (m); a solver stopped on
-#: a bound with a larger miss has found no root.
+#: A root the solver returns puts the MKS trajectory this close to the target (m).
 _CONVERGED_MISS_M = 1.0
-#: Gauss-Legendre intervals and order of the time of flight (eq 3.32) to the target: converged
-#: to well under a microsecond, a fraction of a millimetre of the target's motion.
-_TIME_INTERVALS = 16
-_TIME_ORDER = 8
 #: The miss (m) that stands for a shot that never reaches the target (refinements turn back).
 _SHORT_MISS_M = 1e12
-#: A 3DOF refinement has converged once it lands this close (m), even if scipy's test of its
-#: steps fails: at rtol = 1e-9 the 3DOF's own end point is good to millimetres.
+#: The 3DOF refinement stops once every solution lands this close (m): at rtol = 1e-9 the
+#: 3DOF's own end point is good to millimetres.
 _LANDED_M = 0.01
-_CROSSING_ITERATIONS = 100
-_CROSSING_TOLERANCE_RAD = 1e-14  # 64 nm of range: the rounding of u allows no better
+#: At most this many 3DOF flights per solution in the refinement.
+_MAX_FLIGHTS = 30
 
 
 @dataclass(frozen=True)
@@ -113,13 +101,25 @@ class TargetPoint:
                 )
             object.__setattr__(self, "arrival_time_s", arrival)
 
+    @classmethod
+    def _of_valid(cls, latitude_deg, longitude_deg, altitude_m, arrival_time_s) -> TargetPoint:
+        """A point of fields known valid (computed, not given), unchecked."""
+        point = cls.__new__(cls)
+        for name, value in zip(
+            cls.__dataclass_fields__,
+            (latitude_deg, longitude_deg, altitude_m, arrival_time_s),
+            strict=True,
+        ):
+            object.__setattr__(point, name, value)
+        return point
+
     def earth_fixed_m(self, gun_longitude_deg: float = 0.0) -> np.ndarray:
         """Position (3,) in the Earth-fixed frame whose x axis points to longitude
         ``gun_longitude_deg`` (the frame of a gun there, at t = 0)."""
         latitude = math.radians(self.latitude_deg)
         longitude = math.radians(self.longitude_deg - gun_longitude_deg)
         up = launch_frame(latitude, longitude, 0.0)[0]
-        return (earth.RADIUS_M + self.altitude_m) * up
+        return (earth.RADIUS_M + self.altitude_m) * np.ravel(up)
 
 
 @dataclass(frozen=True)
@@ -135,6 +135,9 @@ class FiringSolution:
     leaves_atmosphere: bool  # apogee above mks.SENSIBLE_ATMOSPHERE_M
     mks_solves: int  # MKS trajectories this root's refinement evaluated
     branch: str  # where it meets the target: "descending" or "ascending"
+    #: d(east, north miss)/d(elevation, bearing) (m/rad) of the MKS at the root, (2, 2)
+    #: read-only: the 3DOF refinement's first Jacobian
+    jacobian_m_rad: np.ndarray | None = field(default=None, compare=False, repr=False)
 
     @property
     def beta_valid(self) -> bool:
@@ -145,13 +148,17 @@ class FiringSolution:
 @dataclass(frozen=True)
 class FiringSolutions:
     """The low-angle and high-angle roots (None where there is none) and, when either is
-    missing, ``reason`` saying why; ``mks_solves`` counts every MKS trajectory evaluated."""
+    missing, ``reason`` saying why; ``mks_solves`` counts every MKS trajectory evaluated.
+    "Low" is the root of the lower gun elevation, where the range grows with elevation; "high"
+    the other, past the maximum range."""
 
     low: FiringSolution | None
     high: FiringSolution | None
     reason: str | None
     mks_solves: int
-    maximum_range_m: float  # ground range of the grid's best shot to the target's altitude
+    #: the greatest Earth-fixed ground range (m) toward the target, at its altitude, that the
+    #: search found (the maximum range where it had to search for it)
+    maximum_range_m: float
 
     @property
     def roots(self) -> list[FiringSolution]:
@@ -170,35 +177,29 @@ class Verification:
     miss_m: float  # the 3DOF's miss at the refined solution
     time_of_flight_s: float  # of the 3DOF at the refined solution
     flights: int  # 3DOF flights the refinement took, the check at the MKS solution included
-    converged: bool  # scipy's test of its steps, or landed within _LANDED_M
+    converged: bool  # landed within the tolerance
     message: str
     rhs_evaluations: int = 0  # of the 3DOF's equations of motion, over all its flights
 
 
 class _Gun:
-    """The constants of a gun's ECI MKS launches (eci.correction_for_launch's, computed once)
-    and its frame: the ECI MKS puts the gun at longitude 0."""
+    """A gun as the compiled solver reads it (:mod:`.firing_solver`): speed, latitude, Cd0 A,
+    mass, eq 3.11's rho0 at the gun, k and the Earth's rotation, and the ECI model's flags."""
 
-    def __init__(self, gun: Launch):
+    def __init__(self, gun: Launch, model: eci.EciModel = eci.CONSISTENT):
         self.launch = gun
-        self.latitude_rad = gun.latitude_rad
-        self.omega = gun.rotation_rate_rad_s
-        self.up = np.ravel(launch_frame(gun.latitude_rad, 0.0, 0.0)[0])
-        self.drag_area_m2 = gun.launch_drag_coefficient * gun.projectile.reference_area_m2
-        self.surface_density_kg_m3 = mks.gun_density_kg_m3(gun)
-
-    def correction(self, elevation_rad, bearing_rad) -> eci.LaunchCorrection:
-        """eci.correction_for_launch of the gun laid at these angles (arrays: many at once)."""
-        return eci.launch_correction(
-            self.launch.speed_m_s,
-            elevation_rad,
-            bearing_rad,
-            self.latitude_rad,
-            drag_area_m2=self.drag_area_m2,
-            mass_kg=self.launch.projectile.mass_kg,
-            surface_density_kg_m3=self.surface_density_kg_m3,
-            rotation_rate_rad_s=self.omega,
+        self.numbers = np.array(
+            [
+                gun.speed_m_s,
+                gun.latitude_rad,
+                gun.launch_drag_coefficient * gun.projectile.reference_area_m2,
+                gun.projectile.mass_kg,
+                mks.gun_density_kg_m3(gun),
+                TEXT_DECAY_CONSTANT_PER_M,
+                gun.rotation_rate_rad_s,
+            ]
         )
+        self.flags = (*model.flags, model.decay == "consistent")
 
 
 def _check_gun(gun) -> Launch:
@@ -212,10 +213,18 @@ def _check_gun(gun) -> Launch:
     return gun
 
 
-def _check_target(target) -> TargetPoint:
-    if not isinstance(target, TargetPoint):
-        raise TypeError(f"target must be a TargetPoint; got {type(target).__name__}")
-    return target
+def _check_targets(targets) -> tuple[list[TargetPoint], bool]:
+    """``targets`` (one TargetPoint or a sequence of them) as a list, and whether it was one."""
+    if isinstance(targets, TargetPoint):
+        return [targets], True
+    if isinstance(targets, str | bytes) or not isinstance(targets, Sequence | np.ndarray):
+        raise TypeError(
+            f"targets must be a TargetPoint or a sequence of them; got {type(targets).__name__}"
+        )
+    for index, target in enumerate(targets):
+        if not isinstance(target, TargetPoint):
+            raise TypeError(f"targets[{index}] must be a TargetPoint; got {type(target).__name__}")
+    return list(targets), False
 
 
 def _check_bearing_limits(bearing_limits_deg) -> tuple[float, float] | None:
@@ -260,232 +269,179 @@ def great_circle(gun: Launch, target: TargetPoint) -> tuple[float, float]:
     return angle, bearing % (2 * math.pi)
 
 
-def _crossing_angles(
-    solution: mks.ModifiedKeplerSolution, target_radius_m: float, branch: str
-) -> np.ndarray:
-    """Angular range (m,) where each launch's radius equals ``target_radius_m`` on ``branch``;
-    NaN where it escapes or its apogee is below. Newton's iteration on u = 1/r, kept inside
-    the branch's bracket by bisection (u is monotonic on each side of the apogee)."""
-    apogee = np.where(solution.escapes, 0.0, solution.apogee_angle)
-    apogee_radius = np.ravel(solution.radius(apogee[:, None]))
-    reached = ~solution.escapes & (apogee_radius > target_radius_m)
-    target_u = 1.0 / target_radius_m
-    if branch == "descending":  # u rises from the apogee to the impact, at u = 1/R
-        low, high = apogee.copy(), np.atleast_1d(solution.impact_angle).astype(float).copy()
-        theta, sign = high.copy(), 1.0
-    else:  # u falls from the muzzle to the apogee
-        low, high = np.zeros_like(apogee), apogee.copy()
-        theta, sign = low.copy(), -1.0
-    reached &= high > low  # not so at a grazing elevation, where the closed form has no digits
-    theta[~reached] = low[~reached] = high[~reached] = 0.0
-    for _ in range(_CROSSING_ITERATIONS):
-        column = theta[:, None]
-        excess = np.ravel(solution.u(column)) - target_u
-        slope = np.ravel(solution.du_dtheta(column))
-        beyond = sign * excess > 0  # past the crossing
-        high = np.where(beyond, theta, high)
-        low = np.where(beyond, low, theta)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = np.where(excess == 0, theta, theta - excess / slope)
-        inside = (step > low) & (step < high)
-        new = np.where(inside, step, 0.5 * (low + high))
-        done = np.max(np.abs(new - theta)) <= _CROSSING_TOLERANCE_RAD
-        theta = new
-        if done:
-            break
-    return np.where(reached, theta, np.nan)
-
-
-def _times(solution: mks.ModifiedKeplerSolution, theta_rad: np.ndarray) -> np.ndarray:
-    """Time of flight (s) to each launch's angle ``theta_rad`` (m,), NaN where it is NaN."""
-    finite = np.where(np.isfinite(theta_rad), theta_rad, 0.0)
-    fractions = np.linspace(0.0, 1.0, _TIME_INTERVALS + 1)[1:]
-    grid = finite[:, None] * fractions
-    times = np.atleast_2d(solution.time(grid, _TIME_ORDER))[:, -1]
-    return np.where(np.isfinite(theta_rad), times, np.nan)
-
-
-class _Problem:
-    """A gun and a target: the MKS residual and its bookkeeping."""
-
-    def __init__(self, gun: Launch, target: TargetPoint, branch: str):
-        self.gun = _Gun(gun)
-        self.target = target
-        self.branch = branch
-        self.target_radius_m = earth.RADIUS_M + target.altitude_m
-        self.target_fixed = target.earth_fixed_m(gun.longitude_deg)
-        self.solves = 0
-
-    def target_inertial(self, time_s):
-        """The target's inertial position(s) (3, n) at ``time_s`` (n,): turned with the Earth."""
-        time = np.atleast_1d(time_s)
-        fixed = np.repeat(self.target_fixed[:, None], time.size, axis=1)
-        return rotate_about_axis(fixed, self.gun.omega * time)
-
-    def flights(self, elevation_rad, bearing_rad):
-        """The ECI MKS of launches at ``elevation_rad`` and ``bearing_rad`` (arrays), their
-        angles and times to the target's altitude."""
-        correction = self.gun.correction(elevation_rad, bearing_rad)
-        solution = eci.solution_for(correction, warn=False)
-        self.solves += np.size(elevation_rad)
-        theta = _crossing_angles(solution, self.target_radius_m, self.branch)
-        return correction, solution, theta, _times(solution, theta)
-
-    def residual(self, x):
-        """East and north miss (m) at the target of the shot at elevation x[0] (rad) and
-        bearing x[1] (rad); NaN if the shot does not reach the target's altitude."""
-        correction, solution, theta, time = self.flights(x[0], x[1] % (2 * math.pi))
-        if not np.isfinite(theta[0]):
-            return np.full(2, np.nan), solution, time[0]
-        point = eci.inertial_positions(solution, correction, self.gun.latitude_rad, theta)[0]
-        aim = self.target_inertial(time)[:, 0]
-        return _east_north(point - aim, aim), solution, time[0]
-
-
 def _east_north(difference, at) -> np.ndarray:
-    """The east and north components of ``difference`` at the point ``at`` (3,)."""
-    east = np.array([-at[1], at[0], 0.0])
-    east /= np.linalg.norm(east)
-    north = np.cross(at / np.linalg.norm(at), east)
-    return np.array([difference @ east, difference @ north])
+    """The east and north components (..., 2) of ``difference`` (..., 3) at the points ``at``
+    (..., 3)."""
+    east = np.stack([-at[..., 1], at[..., 0], np.zeros_like(at[..., 0])], axis=-1)
+    east /= np.linalg.norm(east, axis=-1, keepdims=True)
+    north = np.cross(at / np.linalg.norm(at, axis=-1, keepdims=True), east)
+    return np.stack([np.sum(difference * east, -1), np.sum(difference * north, -1)], axis=-1)
 
 
-def _grid(problem: _Problem, bearing_rad: float):
-    """The bracketing sweep: elevations (rad) and, at each, the trajectory's angular range to
-    the target's altitude less the central angle from the gun to the target's position at that
-    time (rad; NaN where it does not get there), and whether each escapes."""
-    elevation = np.radians(np.arange(_GRID_STEP_DEG, _GRID_TOP_DEG + 1e-9, _GRID_STEP_DEG))
-    correction = problem.gun.correction(elevation, bearing_rad)
-    usable = (correction.elevation_rad > 0) & (
-        correction.beta * correction.decay_scale <= _GRID_MAX_DECAY
-    )  # the Earth's turn can tip a grazing shot's inertial velocity below the horizon
-    elevation = elevation[usable]
-    _, solution, theta, time = problem.flights(elevation, bearing_rad)
-    aim = problem.target_inertial(np.nan_to_num(time))
-    aim /= np.linalg.norm(aim, axis=0)
-    central = np.arctan2(
-        np.linalg.norm(np.cross(problem.gun.up, aim.T), axis=1), problem.gun.up @ aim
+def _elevation_deg(elevation_rad: float) -> str:
+    return f"{math.degrees(elevation_rad):.2f} deg"
+
+
+def _missing(status: int, side: int, search: np.ndarray, distance_km: float, row) -> str:
+    """Why root ``side`` (0 low, 1 high) of a target is missing, from the solver's ``status``
+    and ``search``; every range quoted is Earth-fixed ground range along the great circle."""
+    name = ("low", "high")[side]
+    peak, reach, lowest, lowest_m, highest, highest_m, _ = search
+    if status == firing_solver.BELOW_LOWEST:
+        searched = "searched" if lowest <= firing_solver.LOWEST_ELEVATION_RAD else "can fly"
+        return (
+            f"no low-angle root: the lowest elevation the MKS {searched} to it, "
+            f"{_elevation_deg(lowest)}, already reaches {lowest_m / 1e3:.1f} km, beyond the "
+            f"target's {distance_km:.1f} km"
+        )
+    if status == firing_solver.ABOVE_HIGHEST:
+        searched = "searched" if highest >= firing_solver.HIGHEST_ELEVATION_RAD else "can fly"
+        return (
+            f"no high-angle root: the highest elevation the MKS {searched} to it, "
+            f"{_elevation_deg(highest)}, still reaches {highest_m / 1e3:.1f} km, beyond the "
+            f"target's {distance_km:.1f} km"
+        )
+    return (
+        f"no {name}-angle root: the refinement stopped {row[3]:.3g} m from the target "
+        "(a root the search lost)"
     )
-    return elevation, theta - central, theta, solution.escapes
 
 
-def _refine(problem: _Problem, start, bounds, limits, arrival_time_s):
-    """Least squares on the east and north miss from ``start`` (elevation, bearing; rad)
-    within ``bounds``; the FiringSolution, or None and why."""
-    first = problem.solves
-
-    def miss(x):
-        # a shot that falls short of the target's altitude: a large miss turns the solver back
-        return np.nan_to_num(problem.residual(x)[0], nan=_SHORT_MISS_M)
-
-    with np.errstate(invalid="ignore"):
-        fit = optimize.least_squares(
-            miss, start, bounds=bounds, x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12
+def _solutions(
+    gun: Launch,
+    targets: list[TargetPoint],
+    branch: str,
+    limits: tuple[float, float] | None,
+    model: eci.EciModel = eci.CONSISTENT,
+) -> list[FiringSolutions]:
+    """Every target's FiringSolutions, solved in one call of the compiled solver."""
+    laid = _Gun(gun, model)
+    count = len(targets)
+    latitude = np.radians([target.latitude_deg for target in targets])
+    longitude = np.radians([target.longitude_deg - gun.longitude_deg for target in targets])
+    altitude = np.array([target.altitude_m for target in targets], dtype=float)
+    descending = np.full(count, branch == "descending")
+    roots, status, search, counts = firing_solver.solve(
+        laid.numbers, laid.flags, latitude, longitude, altitude, descending
+    )
+    results = []
+    for i, target in enumerate(targets):
+        distance_km = search[i, 6] / 1e3
+        if branch == "ascending" and target.altitude_m == 0.0:
+            results.append(
+                FiringSolutions(
+                    None,
+                    None,
+                    "the ascending branch meets altitude 0 only at the muzzle",
+                    0,
+                    math.nan,
+                )
+            )
+            continue
+        both = int(status[i, 0]) if status[i, 0] == status[i, 1] else -1
+        reason = {
+            firing_solver.NO_TRAJECTORY: (
+                f"above the maximum altitude: no MKS trajectory between "
+                f"{_elevation_deg(firing_solver.LOWEST_ELEVATION_RAD)} and "
+                f"{_elevation_deg(firing_solver.HIGHEST_ELEVATION_RAD)} of elevation reaches "
+                f"{target.altitude_m / 1e3:g} km on the {branch} branch"
+            ),
+            firing_solver.ALL_ESCAPE: (
+                "the MKS escapes at every elevation: the muzzle speed exceeds escape speed"
+            ),
+            firing_solver.BEYOND_RANGE: (
+                f"beyond the maximum range: the target is {distance_km:.1f} km away along the "
+                f"ground, the gun reaches at most {search[i, 1] / 1e3:.1f} km toward it at "
+                f"{target.altitude_m / 1e3:g} km altitude (at "
+                f"{_elevation_deg(search[i, 0])}; Earth-fixed ground ranges)"
+            ),
+        }.get(both)
+        if reason is not None:
+            results.append(FiringSolutions(None, None, reason, int(counts[i]), search[i, 1]))
+            continue
+        found: list[FiringSolution | None] = []
+        reasons = []
+        for side in range(2):
+            row = roots[i, side]
+            if status[i, side] != firing_solver.FOUND:
+                found.append(None)
+                reasons.append(_missing(status[i, side], side, search[i], distance_km, row))
+                continue
+            root, why = _root(row, target, branch, limits)
+            found.append(root)
+            if why is not None:
+                reasons.append(f"no {('low', 'high')[side]}-angle root: {why}")
+        results.append(
+            FiringSolutions(
+                found[0], found[1], "; ".join(reasons) or None, int(counts[i]), search[i, 1]
+            )
         )
-    residual, solution, time = problem.residual(fit.x)
-    if not np.all(np.isfinite(residual)):
-        return None, "the refinement left the trajectories that reach the target's altitude"
-    if np.hypot(*residual) > _CONVERGED_MISS_M:
-        return None, (
-            f"the refinement stopped {np.hypot(*residual) / 1e3:.3g} km from the target, "
-            "on the bounds of its elevation bracket or bearing span: no root there"
-        )
-    elevation_deg = math.degrees(fit.x[0])
-    bearing_deg = math.degrees(fit.x[1]) % 360.0
+    return results
+
+
+def _root(
+    row, target: TargetPoint, branch: str, limits
+) -> tuple[FiringSolution | None, str | None]:
+    """The FiringSolution of a solver's root ``row`` (:data:`.firing_solver.SOLUTION_FIELDS`),
+    or None and why where the bearing limits or the arrival time rule it out."""
+    elevation, bearing, time, miss, beta, apogee, evaluations = row[:7]
+    bearing_deg = math.degrees(bearing) % 360.0
     if limits is not None and not _within(bearing_deg, limits):
         return None, f"bearing {bearing_deg:.3f} deg lies outside bearing_limits_deg {limits}"
-    fire_time = None if arrival_time_s is None else arrival_time_s - time
+    arrival = target.arrival_time_s
+    fire_time = None if arrival is None else arrival - time
     if fire_time is not None and fire_time < 0:
         return None, (
-            f"its time of flight {time:.1f} s exceeds arrival_time_s = {arrival_time_s:g} s: "
+            f"its time of flight {time:.1f} s exceeds arrival_time_s = {arrival:g} s: "
             "it would have to be fired before t = 0"
         )
-    apogee = float(solution.apogee_altitude())
-    root = FiringSolution(
-        elevation_deg=elevation_deg,
+    jacobian = row[7:11].reshape(2, 2).copy()
+    jacobian.flags.writeable = False
+    return FiringSolution(
+        elevation_deg=math.degrees(elevation),
         bearing_deg=bearing_deg,
         time_of_flight_s=float(time),
         fire_time_s=None if fire_time is None else float(fire_time),
-        miss_m=float(np.hypot(*residual)),
-        beta=float(solution.beta[0, 0]),
-        leaves_atmosphere=apogee > mks.SENSIBLE_ATMOSPHERE_M,
-        mks_solves=problem.solves - first,
-        branch=problem.branch,
-    )
-    return root, None
+        miss_m=float(miss),
+        beta=float(beta),
+        leaves_atmosphere=bool(apogee > mks.SENSIBLE_ATMOSPHERE_M),
+        mks_solves=int(evaluations),
+        branch=branch,
+        jacobian_m_rad=jacobian,
+    ), None
 
 
+@overload
 def firing_solutions(
     gun: Launch,
-    target: TargetPoint,
+    targets: TargetPoint,
     *,
     bearing_limits_deg: tuple[float, float] | None = None,
     branch: str = "descending",
-) -> FiringSolutions:
+) -> FiringSolutions: ...
+@overload
+def firing_solutions(
+    gun: Launch,
+    targets: Sequence[TargetPoint],
+    *,
+    bearing_limits_deg: tuple[float, float] | None = None,
+    branch: str = "descending",
+) -> list[FiringSolutions]: ...
+def firing_solutions(gun, targets, *, bearing_limits_deg=None, branch="descending"):
     """The low-angle and high-angle firing solutions of ``gun`` (a Launch: its projectile,
-    speed, site and Earth rotation; its elevation and bearing are ignored) onto ``target``,
-    meeting it on the trajectory's ``branch`` ("descending" or "ascending"). The bearing is
-    limited to the arc turning clockwise from bearing_limits_deg[0] to [1] if given. A target
-    out of reach is a result with no roots and the reason, not an exception."""
+    speed, site and Earth rotation; its elevation and bearing are ignored) onto ``targets``
+    (one TargetPoint, or a sequence of them: one result each, solved together by the compiled
+    solver of :mod:`.firing_solver`, the same answers either way), meeting each on the
+    trajectory's ``branch`` ("descending" or "ascending"). The bearing is limited to the arc
+    turning clockwise from bearing_limits_deg[0] to [1] if given. A target out of reach is a
+    result with no roots and the reason, not an exception."""
     gun = _check_gun(gun)
-    target = _check_target(target)
+    points, single = _check_targets(targets)
     branch = check_choice(branch, "branch", BRANCHES)
     limits = _check_bearing_limits(bearing_limits_deg)
     gun.warn_ignored("ECI MKS", "cross_wind_m_s", "head_wind_m_s", reason="it has no wind")
-    problem = _Problem(gun, target, branch)
-    if branch == "ascending" and target.altitude_m == 0.0:
-        return FiringSolutions(
-            None, None, "the ascending branch meets altitude 0 only at the muzzle", 0, math.nan
-        )
-    central, bearing = great_circle(gun, target)
-    elevation, excess, theta, escapes = _grid(problem, bearing)
-    maximum_range = float(np.nanmax(theta, initial=0.0) * earth.RADIUS_M)
-    no_root = None
-    if escapes.all():
-        no_root = "the MKS escapes at every elevation: the muzzle speed exceeds escape speed"
-    elif not np.isfinite(excess).any():
-        no_root = (
-            f"above the maximum altitude: no trajectory reaches {target.altitude_m / 1e3:g} km"
-        )
-    elif np.nanmax(excess) < 0:
-        no_root = (
-            f"beyond the maximum range: the target is {central * earth.RADIUS_M / 1e3:.1f} km "
-            f"away, the gun reaches about {maximum_range / 1e3:.1f} km at "
-            f"{target.altitude_m / 1e3:g} km altitude"
-        )
-    if no_root is not None:
-        return FiringSolutions(None, None, no_root, problem.solves, maximum_range)
-    peak = int(np.nanargmax(excess))
-    sign = np.sign(excess)
-    low_cells = np.flatnonzero((sign[:-1] < 0) & (sign[1:] >= 0))
-    high_cells = np.flatnonzero((sign[:-1] >= 0) & (sign[1:] < 0))
-    low_cells, high_cells = low_cells[low_cells < peak], high_cells[high_cells >= peak]
-    bearing_bounds = (bearing - _BEARING_SPAN_RAD, bearing + _BEARING_SPAN_RAD)
-    roots: dict[str, FiringSolution | None] = {}
-    reasons = []
-    for name, cells, span in (
-        ("low", low_cells[-1:], (elevation[0], elevation[peak])),
-        ("high", high_cells[:1], (elevation[peak], elevation[-1])),
-    ):
-        if not cells.size:
-            roots[name] = None
-            reasons.append(
-                f"no {name}-angle root: none between {np.degrees(span[0]):.1f} and "
-                f"{np.degrees(span[1]):.1f} deg of elevation reaches the target"
-            )
-            continue
-        cell = int(cells[0])
-        # start where the bracket interpolates to zero; stay on its side of the maximum range
-        # (the grid's peak) so that the two roots cannot merge
-        a, b = excess[cell], excess[cell + 1]
-        start = elevation[cell] + (elevation[cell + 1] - elevation[cell]) * a / (a - b)
-        bounds = ([span[0], bearing_bounds[0]], [span[1], bearing_bounds[1]])
-        roots[name], why = _refine(problem, [start, bearing], bounds, limits, target.arrival_time_s)
-        if why is not None:
-            reasons.append(f"no {name}-angle root: {why}")
-    return FiringSolutions(
-        roots["low"], roots["high"], "; ".join(reasons) or None, problem.solves, maximum_range
-    )
+    results = _solutions(gun, points, branch, limits)
+    return results[0] if single else results
 
 
 class _Shooting:
@@ -559,25 +515,200 @@ class _Shooting:
         )
 
 
+def _check_target(target) -> TargetPoint:
+    if not isinstance(target, TargetPoint):
+        raise TypeError(f"target must be a TargetPoint; got {type(target).__name__}")
+    return target
+
+
+class _Batch3dof:
+    """The 3DOF flown at many (elevation, bearing) pairs of one gun at once, each to its
+    target's altitude on its branch: the east and north miss (m) at each target."""
+
+    def __init__(self, gun: Launch, targets: list[TargetPoint], rising: np.ndarray, rtol: float):
+        self.launches = Launches.from_launches([gun])
+        self.aims = np.array([target.earth_fixed_m() for target in targets])  # 3DOF's frame
+        self.altitudes = np.array([target.altitude_m for target in targets])
+        self.rising, self.rtol = rising, rtol
+        self.flights = np.zeros(len(targets), dtype=int)
+        self.rhs_evaluations = np.zeros(len(targets), dtype=int)
+
+    def miss(self, x: np.ndarray, which: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The miss (k, 2) of the shots at ``x`` (k, 2; rad) for targets ``which`` (k,), NaN
+        where the shot never reaches its target's altitude, and the times of flight (k,)."""
+        elevation = np.clip(np.degrees(x[:, 0]), 1e-9, 90.0)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", TruncatedFlightWarning)  # a cut-off flight misses
+            flight = threedof.fly_3dof(
+                self.launches.but(elevation_deg=elevation, bearing_deg=np.degrees(x[:, 1]) % 360),
+                rtol=self.rtol,
+                end_altitude_m=self.altitudes[which],
+                rising=self.rising[which],
+            )
+        np.add.at(self.flights, which, 1)
+        np.add.at(self.rhs_evaluations, which, flight.rhs_evaluations)
+        aims = self.aims[which]
+        miss = _east_north(flight.end_position_m.T - aims, aims)
+        miss[~flight.impact] = np.nan
+        return miss, np.where(flight.impact, flight.time_of_flight_s, np.nan)
+
+    def jacobian(self, x, miss, which) -> np.ndarray:
+        """Forward differences (k, 2, 2) of the miss at ``x``: two flights each."""
+        step = 1e-7  # rad: centimetres at the target, far above the 3DOF's noise at rtol 1e-9
+        columns = []
+        for k in range(2):
+            shifted = x.copy()
+            shifted[:, k] += step
+            columns.append((self.miss(shifted, which)[0] - miss) / step)
+        return np.stack(columns, axis=-1)
+
+
+def _refine_3dof(
+    gun: Launch,
+    targets: list[TargetPoint],
+    solutions: list[FiringSolution],
+    rtol: float,
+    tolerance_m: float,
+) -> list[Verification]:
+    """Newton's method on every solution's (elevation, bearing) with the 3DOF, all solutions
+    flown together each iteration: one flight per solution and step, the Jacobian the MKS's
+    at its root (its model error is small next to the sensitivities) updated by Broyden's rule
+    along each step, differenced by the 3DOF only where a step fails to halve the miss."""
+    count = len(targets)
+    shots = _Batch3dof(gun, targets, np.array([s.branch == "ascending" for s in solutions]), rtol)
+    x = np.radians([[s.elevation_deg, s.bearing_deg] for s in solutions])
+    start = x.copy()
+    everyone = np.arange(count)
+    miss, time = shots.miss(x, everyone)
+    first = np.hypot(miss[:, 0], miss[:, 1])
+    jacobian = np.array(
+        [
+            np.full((2, 2), np.nan) if s.jacobian_m_rad is None else s.jacobian_m_rad
+            for s in solutions
+        ]
+    )
+    unknown = ~np.isfinite(jacobian).all(axis=(1, 2)) & np.isfinite(first)
+    if unknown.any():
+        which = everyone[unknown]
+        jacobian[which] = shots.jacobian(x[which], miss[which], which)
+    size = first.copy()
+    active = np.isfinite(size) & (size > tolerance_m)
+    while active.any():
+        which = everyone[active & (shots.flights < _MAX_FLIGHTS)]
+        if not which.size:
+            break
+        with np.errstate(invalid="ignore", divide="ignore"):
+            step = -np.linalg.solve(jacobian[which], miss[which][..., None])[..., 0]
+        step[~np.isfinite(step)] = 0.0
+        trial = x[which] + step
+        new_miss, new_time = shots.miss(trial, which)
+        new_size = np.hypot(new_miss[:, 0], new_miss[:, 1])
+        landed = np.isfinite(new_size)
+        # Broyden's update along the step, where the shot got there
+        change = new_miss - miss[which]
+        predicted = np.einsum("kij,kj->ki", jacobian[which], step)
+        norm = np.sum(step * step, axis=1)
+        update = np.where(
+            (landed & (norm > 0))[:, None, None],
+            np.einsum("ki,kj->kij", change - predicted, step)
+            / np.maximum(norm, 1e-300)[:, None, None],
+            0.0,
+        )
+        jacobian[which] += np.nan_to_num(update)
+        # a shot that never got there: half the step next time, from the same point
+        accepted = which[landed]
+        x[accepted], miss[accepted], time[accepted] = (
+            trial[landed],
+            new_miss[landed],
+            new_time[landed],
+        )
+        stalled = which[landed & (new_size > 0.5 * size[which]) & (new_size > tolerance_m)]
+        size[accepted] = new_size[landed]
+        if stalled.size:
+            jacobian[stalled] = shots.jacobian(x[stalled], miss[stalled], stalled)
+        failed = which[~landed]
+        if failed.size:
+            jacobian[failed] *= 2.0  # halves the next step
+        active = np.isfinite(size) & (size > tolerance_m)
+    results = []
+    for i, solution in enumerate(solutions):
+        elevation, bearing = math.degrees(x[i, 0]), math.degrees(x[i, 1]) % 360.0
+        converged = bool(size[i] <= tolerance_m)
+        message = (
+            f"landed within {tolerance_m:g} m"
+            if converged
+            else "the 3DOF never reached the target's altitude at the MKS solution"
+            if not np.isfinite(first[i])
+            else f"stopped {size[i]:.3g} m from the target after {shots.flights[i]} flights"
+        )
+        results.append(
+            Verification(
+                mks_miss_m=float(first[i]),
+                elevation_deg=elevation,
+                bearing_deg=bearing,
+                elevation_change_deg=elevation - solution.elevation_deg,
+                bearing_change_deg=(math.degrees(x[i, 1] - start[i, 1]) + 180.0) % 360.0 - 180.0,
+                miss_m=float(size[i]) if np.isfinite(size[i]) else math.inf,
+                time_of_flight_s=float(time[i]),
+                flights=int(shots.flights[i]),
+                converged=converged,
+                message=message,
+                rhs_evaluations=int(shots.rhs_evaluations[i]),
+            )
+        )
+    return results
+
+
+@overload
 def verify_with_3dof(
-    gun: Launch, target: TargetPoint, solution: FiringSolution, *, rtol: float = 1e-9
-) -> Verification:
-    """The 3DOF (the gun's own atmosphere, drag law and Earth rotation) fired at the MKS
-    ``solution`` and its miss where it crosses the target's altitude on the solution's branch,
-    then a shooting refinement of (elevation, bearing) by the 3DOF from there (scipy's root,
-    finite differences): how far the MKS solution was from the 3DOF's, and at what cost."""
+    gun: Launch,
+    targets: TargetPoint,
+    solutions: FiringSolution,
+    *,
+    rtol: float = 1e-9,
+    tolerance_m: float = _LANDED_M,
+) -> Verification: ...
+@overload
+def verify_with_3dof(
+    gun: Launch,
+    targets: Sequence[TargetPoint],
+    solutions: Sequence[FiringSolution],
+    *,
+    rtol: float = 1e-9,
+    tolerance_m: float = _LANDED_M,
+) -> list[Verification]: ...
+def verify_with_3dof(gun, targets, solutions, *, rtol=1e-9, tolerance_m=_LANDED_M):
+    """The 3DOF (the gun's own atmosphere, drag law and Earth rotation) fired at each MKS
+    firing solution and its miss where it crosses its target's altitude on the solution's
+    branch, then refined by shooting with the 3DOF until it lands within ``tolerance_m``: every
+    solution flown together in the compiled batch, one flight per solution and Newton step,
+    the MKS's own Jacobian at the root (updated by Broyden's rule) in place of differences.
+    One target and solution, or sequences of them (one Verification each, the same answers
+    either way)."""
     gun = _check_gun(gun)
-    target = _check_target(target)
-    if not isinstance(solution, FiringSolution):
-        raise TypeError(f"solution must be a FiringSolution; got {type(solution).__name__}")
-    shooting = _Shooting(gun, target, solution.branch == "ascending", rtol)
-    start = np.radians([solution.elevation_deg, solution.bearing_deg])
-    return shooting.verification(start)
+    points, single = _check_targets(targets)
+    chosen = [solutions] if single else list(solutions) if isinstance(solutions, Sequence) else None
+    if chosen is None or len(chosen) != len(points):
+        raise ValueError(
+            "solutions must be one FiringSolution per target "
+            f"({len(points)} targets; got {type(solutions).__name__})"
+        )
+    for index, solution in enumerate(chosen):
+        if not isinstance(solution, FiringSolution):
+            raise TypeError(
+                f"solutions[{index}] must be a FiringSolution; got {type(solution).__name__}"
+            )
+    tolerance = check_range(
+        real_number(tolerance_m, "tolerance_m"), "tolerance_m", low=0.0, low_inclusive=False
+    )
+    rtol = check_range(real_number(rtol, "rtol"), "rtol", low=0.0, low_inclusive=False, high=1e-3)
+    results = _refine_3dof(gun, points, chosen, rtol, tolerance)
+    return results[0] if single else results
 
 
 # --- part 2: intercepts of a ballistic target (Chapter 7 A) -----------------------------------
 _KEPLER_ITERATIONS = 60
-_KEPLER_TOLERANCE_RAD = 1e-15
+_KEPLER_TOLERANCE_RAD = 1e-14  # 64 nm along a 6,400 km orbit: past it, rounding oscillates
 
 
 @dataclass(frozen=True, eq=False)
@@ -707,10 +838,10 @@ def _aims(gun: Launch, target: KeplerTarget, times_s: np.ndarray) -> list[Target
     latitude = np.degrees(np.arcsin(np.clip(fixed[2] / radius, -1.0, 1.0)))
     longitude = (np.degrees(np.arctan2(fixed[1], fixed[0])) + gun.longitude_deg + 180) % 360 - 180
     return [
-        TargetPoint(float(lat), float(lon), float(r - earth.RADIUS_M), arrival_time_s=float(t))
-        if r >= earth.RADIUS_M
-        else None
-        for lat, lon, r, t in zip(latitude, longitude, radius, times_s, strict=True)
+        TargetPoint._of_valid(lat, lon, r - earth.RADIUS_M, t) if r >= earth.RADIUS_M else None
+        for lat, lon, r, t in zip(
+            latitude.tolist(), longitude.tolist(), radius.tolist(), times_s.tolist(), strict=True
+        )
     ]
 
 
@@ -733,18 +864,26 @@ def _check_intercept_times(times_s, target: KeplerTarget) -> np.ndarray:
     return times
 
 
-def _intercept(gun, target, time_s, aim, branch, limits) -> Intercept:
-    if aim is None:
-        return Intercept(
-            time_s,
-            None,
-            None,
-            None,
-            f"the target has hit the ground at {target.ground_time_s:.1f} s",
-            0,
-        )
-    result = firing_solutions(gun, aim, bearing_limits_deg=limits, branch=branch)
-    return Intercept(time_s, aim, result.low, result.high, result.reason, result.mks_solves)
+def _intercepts(gun, targets, times, branch, limits) -> list[list[Intercept]]:
+    """The intercepts of every target at its times (a list of (n_i,) arrays), all solved in
+    one call of the compiled solver."""
+    aims = [_aims(gun, target, own) for target, own in zip(targets, times, strict=True)]
+    reachable = [aim for row in aims for aim in row if aim is not None]
+    solved = iter(_solutions(gun, reachable, branch, limits) if reachable else [])
+    result = []
+    for target, own, row in zip(targets, times, aims, strict=True):
+        items = []
+        for time, aim in zip(own, row, strict=True):
+            if aim is None:
+                reason = f"the target has hit the ground at {target.ground_time_s:.1f} s"
+                items.append(Intercept(float(time), None, None, None, reason, 0))
+                continue
+            found = next(solved)
+            items.append(
+                Intercept(float(time), aim, found.low, found.high, found.reason, found.mks_solves)
+            )
+        result.append(items)
+    return result
 
 
 def intercept(
@@ -763,11 +902,11 @@ def intercept(
     gun = _check_gun(gun)
     target = _check_kepler_target(target)
     branch = check_choice(branch, "branch", BRANCHES)
+    limits = _check_bearing_limits(bearing_limits_deg)
     time = _check_intercept_times(intercept_time_s, target)
     if np.ndim(intercept_time_s) != 0:
         raise TypeError("intercept_time_s must be one time (s); intercept_window takes many")
-    (aim,) = _aims(gun, target, time)
-    return _intercept(gun, target, float(time[0]), aim, branch, bearing_limits_deg)
+    return _intercepts(gun, [target], [time], branch, limits)[0][0]
 
 
 @dataclass(frozen=True)
@@ -801,6 +940,36 @@ class InterceptWindow:
         return sum(item.mks_solves for item in self.intercepts)
 
 
+def _window(intercepts: list[Intercept]) -> InterceptWindow:
+    feasible = [item for item in intercepts if item.roots]
+    fires = [
+        root.fire_time_s for item in feasible for root in item.roots if root.fire_time_s is not None
+    ]
+    if not feasible:
+        first = intercepts[0].reason if intercepts else "no intercept times"
+        nan = math.nan
+        return InterceptWindow(
+            tuple(intercepts), nan, nan, nan, nan, f"no feasible intercept: {first}"
+        )
+    return InterceptWindow(
+        tuple(intercepts),
+        feasible[0].intercept_time_s,
+        feasible[-1].intercept_time_s,
+        min(fires),
+        max(fires),
+        None,
+    )
+
+
+def _window_times(target: KeplerTarget, times_s, count: int) -> np.ndarray:
+    if times_s is None:
+        end = target.ground_time_s
+        if not math.isfinite(end):
+            raise ValueError("the target never falls back to the ground: pass times_s")
+        times_s = np.linspace(max(target.epoch_s, 0.0), end, count + 2)[1:-1]
+    return _check_intercept_times(times_s, target)
+
+
 def intercept_window(
     gun: Launch,
     target: KeplerTarget,
@@ -812,38 +981,40 @@ def intercept_window(
 ) -> InterceptWindow:
     """:func:`intercept` at every time of ``times_s`` (s), or by default at ``count`` times
     spread over the target's flight from its epoch (or t = 0, if later) until it falls back to
-    the ground (ends excluded): which are feasible, the earliest and latest feasible intercept
-    and the feasible fire times."""
+    the ground (ends excluded), solved together: which are feasible, the earliest and latest
+    feasible intercept and the feasible fire times."""
+    return raid_windows(
+        gun,
+        [target],
+        times_s=times_s,
+        count=count,
+        branch=branch,
+        bearing_limits_deg=bearing_limits_deg,
+    )[0]
+
+
+def raid_windows(
+    gun: Launch,
+    targets: Sequence[KeplerTarget],
+    *,
+    times_s=None,
+    count: int = 50,
+    branch: str = "ascending",
+    bearing_limits_deg: tuple[float, float] | None = None,
+) -> list[InterceptWindow]:
+    """:func:`intercept_window` of every target of a raid, every intercept of every target
+    solved in one call of the compiled solver: at ``times_s`` (s, the same for every target)
+    or at ``count`` times over each target's flight."""
     gun = _check_gun(gun)
-    target = _check_kepler_target(target)
+    if isinstance(targets, KeplerTarget) or not isinstance(targets, Sequence):
+        raise TypeError(f"targets must be a sequence of KeplerTarget; got {type(targets).__name__}")
+    targets = [_check_kepler_target(target) for target in targets]
     branch = check_choice(branch, "branch", BRANCHES)
+    limits = _check_bearing_limits(bearing_limits_deg)
     if times_s is None:
         count = int(check_range(real_number(count, "count"), "count", low=1))
-        end = target.ground_time_s
-        if not math.isfinite(end):
-            raise ValueError("the target never falls back to the ground: pass times_s")
-        times_s = np.linspace(max(target.epoch_s, 0.0), end, count + 2)[1:-1]
-    times = _check_intercept_times(times_s, target)
-    intercepts = tuple(
-        _intercept(gun, target, float(time), aim, branch, bearing_limits_deg)
-        for time, aim in zip(times, _aims(gun, target, times), strict=True)
-    )
-    feasible = [item for item in intercepts if item.roots]
-    fires = [
-        root.fire_time_s for item in feasible for root in item.roots if root.fire_time_s is not None
-    ]
-    if not feasible:
-        first = intercepts[0].reason if intercepts else "no intercept times"
-        nan = math.nan
-        return InterceptWindow(intercepts, nan, nan, nan, nan, f"no feasible intercept: {first}")
-    return InterceptWindow(
-        intercepts,
-        feasible[0].intercept_time_s,
-        feasible[-1].intercept_time_s,
-        min(fires),
-        max(fires),
-        None,
-    )
+    times = [_window_times(target, times_s, count) for target in targets]
+    return [_window(items) for items in _intercepts(gun, targets, times, branch, limits)]
 
 
 # --- the 3DOF alone, and the Chapter 7 counts --------------------------------------------------

@@ -44,7 +44,7 @@ import pandas as pd
 
 from . import earth
 from .atmosphere import SEA_LEVEL_DENSITY_KG_M3, TEXT_DECAY_CONSTANT_PER_M, get_atmosphere
-from .compiled import jit
+from .compiled import formula, jit
 from .launch import Launch, Launches
 from .trajectory import describe, launch_frame
 from .validation import ModelValidityWarning, check_range, finite_array, finite_scalar
@@ -98,14 +98,30 @@ def decay_factor_beta(
     decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
 ):
     """Eq 3.22: beta = Cd0 rho0 A / (2 k m sin phi0), the MKS ballistic coefficient."""
+    return beta_formula(
+        np.asarray(drag_coefficient),
+        surface_density_kg_m3,
+        area_m2,
+        mass_kg,
+        elevation_rad,
+        decay_constant_per_m,
+    )
+
+
+@formula
+def beta_formula(
+    drag_coefficient, surface_density_kg_m3, area_m2, mass_kg, elevation_rad, decay_constant_per_m
+):
+    """:func:`decay_factor_beta` of numbers (compiled code) or arrays."""
     return (
-        np.asarray(drag_coefficient)
+        drag_coefficient
         * surface_density_kg_m3
         * area_m2
         / (2 * decay_constant_per_m * mass_kg * np.sin(elevation_rad))
     )
 
 
+@formula
 def decay_rate_tau(
     elevation_rad, decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M, radius_m=earth.RADIUS_M
 ):
@@ -179,6 +195,10 @@ _LATE_DECAY_EXPONENT = 20.0
 _NEWTON_STEP_RAD = 1e-15
 _NEWTON_NOISE_RAD = 1e-12
 _NEWTON_ITERATIONS = 50
+#: The crossing of a radius: at most this many Newton (or bisection) steps, stopping once a step
+#: is below _CROSSING_TOLERANCE_RAD (64 nm of range: the rounding of u allows no better).
+_CROSSING_ITERATIONS = 100
+_CROSSING_TOLERANCE_RAD = 1e-14
 
 
 @jit
@@ -335,6 +355,82 @@ def _impacts(table, tau, radius, escapes, apogee_angle, angle):
                 break
         angle[i] = theta
     return -1
+
+
+@jit
+def _crossing(table, i, tau, low, high, target_u, sign):
+    """The angle in [low, high] where launch ``i``'s u = 1/r equals ``target_u``: u rises
+    through it on the descending branch (``sign`` +1: from the apogee to the impact) and
+    falls through it on the ascending one (-1: from the muzzle to the apogee). Newton's
+    iteration from the branch's far end, kept inside the bracket by bisection."""
+    theta = high if sign > 0 else low
+    for _ in range(_CROSSING_ITERATIONS):
+        u, slope, _ = _point(table, i, tau, theta)
+        excess = u - target_u
+        if sign * excess > 0:  # past the crossing
+            high = theta
+        else:
+            low = theta
+        step = theta if excess == 0 else theta - excess / slope
+        new = step if low < step < high else 0.5 * (low + high)
+        done = abs(new - theta) <= _CROSSING_TOLERANCE_RAD
+        theta = new
+        if done:
+            break
+    return theta
+
+
+@jit
+def _interval_time(table, i, tau, growth, low, high, nodes, weights):
+    """Eq 3.32's time (s) of launch ``i`` from angle ``low`` to ``high``: Gauss-Legendre on the
+    ``nodes`` and ``weights`` of dtheta / (u^2 h), h = h_inf exp(growth e^{-tau theta}) (eq 3.23,
+    ``growth`` = beta x decay scale)."""
+    half = 0.5 * (high - low)
+    total = 0.0
+    for j in range(nodes.size):
+        theta = low + half * (nodes[j] + 1.0)
+        u = _point(table, i, tau, theta)[0]
+        momentum = table[_H_INF, i] * math.exp(growth * math.exp(-tau * theta))
+        total += weights[j] / (u * u * momentum)
+    return half * total
+
+
+#: Where :func:`_time_to` breaks its intervals, in units of 1/tau: the driving terms' decay
+#: e^{-tau theta} sets the integrand's fastest variation (within 20/tau it has died to e^-20;
+#: past it u is a conic and h constant to 2e-9). With 8 points each, the time of flight to
+#: the impact agrees with 4,000 equal intervals to 1 ns over 1-89.8 deg for HP, LP and the
+#: baseline from Barbados (16 equal intervals: 0.2 ns, for 128 evaluations against 40).
+_TIME_BREAKS = (1.0, 3.0, 8.0, 20.0)
+
+
+@jit
+def _time_to(table, i, tau, growth, theta, nodes, weights):
+    """Eq 3.32's time of flight (s) of launch ``i`` from launch to the angle ``theta``: one
+    :func:`_interval_time` per interval between the breaks of :data:`_TIME_BREAKS` below it."""
+    total = low = 0.0
+    for mark in _TIME_BREAKS:
+        high = mark / tau
+        if high >= theta:
+            break
+        total += _interval_time(table, i, tau, growth, low, high, nodes, weights)
+        low = high
+    return total + _interval_time(table, i, tau, growth, low, theta, nodes, weights)
+
+
+@jit
+def _times(table, tau, growth, theta, nodes, weights, out):
+    """Time of flight (s) into ``out`` (m, k) to every angle of ``theta`` (rows or 1, k; sorted
+    and non-negative), one :func:`_interval_time` per interval from the angle before (from 0 to
+    the first), for launch i on row i (or the single launch on every row)."""
+    for i in range(out.shape[0]):
+        launch, row = min(i, table.shape[1] - 1), min(i, theta.shape[0] - 1)
+        rate, rise = _at(tau, launch), _at(growth, launch)
+        previous = total = 0.0
+        for j in range(out.shape[1]):
+            total += _interval_time(
+                table, launch, rate, rise, previous, theta[row, j], nodes, weights
+            )
+            out[i, j], previous = total, theta[row, j]
 
 
 @jit
@@ -669,18 +765,19 @@ class ModifiedKeplerSolution:
         hundred angles three points per interval are converged to nanoseconds (tests); ask for
         the time at a single far angle and one three-point interval spans the whole flight:
         pass the grid and read its last value instead."""
-        theta = self._theta(theta_rad)
-        theta = np.broadcast_to(theta, (self._table.shape[1], theta.shape[1]))
-        edges = np.concatenate([np.zeros((theta.shape[0], 1)), theta], axis=1)
-        if np.any(np.diff(edges, axis=1) < 0):
+        theta = np.ascontiguousarray(self._theta(theta_rad), dtype=float)
+        count = self._table.shape[1]
+        if theta.shape[0] not in (1, count):
+            raise ValueError(
+                f"theta_rad must have one row, or one per launch ({count}); got {theta.shape[0]}"
+            )
+        if theta.size and (np.any(theta[:, 0] < 0) or np.any(np.diff(theta, axis=1) < 0)):
             raise ValueError("theta_rad must be sorted and non-negative")
         nodes, weights = _gauss_legendre(int(order))
-        low, high = edges[:, :-1], edges[:, 1:]
-        points = (0.5 * (high - low))[:, :, None] * (nodes + 1) + low[:, :, None]
-        flat = points.reshape(points.shape[0], -1)
-        integrand = 1 / (self._rows(self.u, flat) ** 2 * self._rows(self.angular_momentum, flat))
-        pieces = 0.5 * (high - low) * (integrand.reshape(points.shape) @ weights)
-        return self._out(np.cumsum(pieces, axis=1))
+        growth = np.ascontiguousarray(np.ravel(self.beta * self.decay_scale))
+        out = np.empty((count, theta.shape[1]))
+        _times(self._table, self._arguments[3], growth, theta, nodes, weights, out)
+        return self._out(out)
 
     # --- validity ------------------------------------------------------------------------------
     def _warn_outside_validity(self):

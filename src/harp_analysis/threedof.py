@@ -67,7 +67,7 @@ from .trajectory import (
     surface_range,
     turned_about_axis,
 )
-from .validation import check_range, finite_scalar, positive_scalar
+from .validation import check_range, finite_array, finite_scalar, positive_scalar
 
 __all__ = ["simulate_3dof", "simulate_3dof_batch", "fly_3dof", "Flights", "warm_up"]
 
@@ -248,15 +248,20 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
 def _fly_all(y0, weather, air_code, drag_code, dynamics, numerics, record):
     """:func:`_integrate` for every launch (columns of ``y0`` and ``weather``): the times of the
     apogee and impact (2, n), the states there (2, 6, n), the evaluations, steps and whether the
-    integration failed (3, n), and the last launch's record of its steps (when ``record``)."""
+    integration failed (3, n), and the last launch's record of its steps (when ``record``).
+    ``numerics`` is :func:`_integrate`'s with arrays (n,) or (1,) of the end altitudes and
+    directions."""
     n = y0.shape[1]
     event_times = np.empty((2, n))
     states = np.empty((2, 6, n))
     counts = np.empty((3, n), np.int64)
     step_times, steps = np.empty(0), np.empty((9, 0))
+    ends, signs, breakpoints_m, t_max_s, rtol, floor, max_step_s = numerics
     for i in range(n):
+        end, sign = ends[min(i, ends.size - 1)], signs[min(i, signs.size - 1)]
+        own = (end, sign, breakpoints_m, t_max_s, rtol, floor, max_step_s)
         flight = _integrate(
-            y0[:, i].copy(), weather[:, i].copy(), air_code, drag_code, dynamics, numerics, record
+            y0[:, i].copy(), weather[:, i].copy(), air_code, drag_code, dynamics, own, record
         )
         apogee_t, apogee, impact_t, end, evaluations, count, failed, step_times, steps = flight
         event_times[0, i], event_times[1, i] = apogee_t, impact_t
@@ -484,14 +489,13 @@ class Flights(NamedTuple):
     end_velocity_m_s: np.ndarray  # (3, n) relative to the Earth, in the same axes
 
 
-def _fly(
-    batch: _Batch, max_time_s: float, rtol: float, record: bool, end=None, rising: bool = False
-):
-    """The compiled flights of ``batch``; FloatingPointError if one cannot be integrated."""
+def _fly(batch: _Batch, max_time_s: float, rtol: float, record: bool, end=None, rising=False):
+    """The compiled flights of ``batch`` to the site's altitude, or to ``end`` (m) rising where
+    ``rising`` (one of each, or arrays (n,)); FloatingPointError if one cannot be integrated."""
     fly, _ = _kernels(*batch.codes)
     numerics = (
-        batch.site_m if end is None else end,
-        -1.0 if rising else 1.0,
+        np.array(batch.site_m if end is None else end, dtype=float, ndmin=1),
+        np.where(rising, -1.0, 1.0).astype(float).reshape(-1),
         batch.breakpoints_m,
         max_time_s,
         rtol,
@@ -513,8 +517,8 @@ def fly_3dof(
     *,
     rtol: float = 1e-9,
     max_time_s: float = 3000.0,
-    end_altitude_m: float | None = None,
-    rising: bool = False,
+    end_altitude_m=None,
+    rising=False,
 ) -> Flights:
     """The apogee and end of each launch in ``launches`` (one :class:`Launch`, a
     :class:`Launches`, or a sequence of Launch sharing one projectile, atmosphere, Earth
@@ -522,12 +526,18 @@ def fly_3dof(
     (:func:`simulate_3dof_batch` is this as a DataFrame).
 
     A flight ends where it falls back to the site's altitude, or to ``end_altitude_m`` (m) if
-    given, or rises through it if ``rising`` (a target above the gun on the way up); ``impact``
-    says whether it got there before ``max_time_s``."""
+    given, or rises through it if ``rising`` (a target above the gun on the way up); each is
+    one for every launch or an array (n,), one per launch. ``impact`` says whether it got
+    there before ``max_time_s``."""
     rtol, max_time_s = _numerics(rtol, max_time_s)
-    if end_altitude_m is not None:
-        end_altitude_m = float(finite_scalar(end_altitude_m, "end_altitude_m"))
     batch = _batch(launches)
+    count = batch.columns.shape[1]
+    if end_altitude_m is not None:
+        end_altitude_m = _per_launch(finite_array(end_altitude_m, "end_altitude_m"), count)
+    directions = np.asarray(rising)
+    if directions.dtype != bool:
+        raise TypeError(f"rising must be True, False or an array of them; got {rising!r:.80}")
+    rising = _per_launch(directions, count)
     summary, counts, *_ = _fly(
         batch, max_time_s, rtol, record=False, end=end_altitude_m, rising=rising
     )
@@ -547,6 +557,16 @@ def fly_3dof(
         summary[8:11],
         summary[11:14],
     )
+
+
+def _per_launch(values: np.ndarray, count: int) -> np.ndarray:
+    """``values``, one for every launch or one per launch, as a flat array; else ValueError."""
+    if values.ndim > 1 or values.size not in (1, count):
+        raise ValueError(
+            f"end_altitude_m and rising must be one value or one per launch ({count}); "
+            f"got shape {values.shape}"
+        )
+    return values.reshape(-1)
 
 
 def _warm_up_pair(projectile_name: str, atmosphere: str) -> None:
