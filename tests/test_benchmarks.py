@@ -18,7 +18,7 @@ EXPECTED = {
     "bench_sixdof": "right-hand side",
     "bench_mlt": "MLT segment (m)",
     "bench_mks": "target (computing beta and tau): class, first zero",
-    "bench_fire_control": "One iterative 3DOF intercept",
+    "bench_fire_control": "Reference, one converged 3DOF intercept",
     "bench_sweeps": "same apogees",  # its smoke clusters are threads of this process
     "bench_figures": "PNG byte-identical to the reference's",
     "bench_mks_improved": "target: a solve in 5 ms",

@@ -23,6 +23,7 @@ import math
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import partial
 from typing import overload
 
 import numpy as np
@@ -33,6 +34,7 @@ from .atmosphere import TEXT_DECAY_CONSTANT_PER_M
 from .launch import Launch, Launches
 from .projectiles import HP
 from .sites import BARBADOS
+from .sweeps import sweep
 from .trajectory import TruncatedFlightWarning, launch_frame, rotate_about_axis
 from .validation import check_choice, check_range, finite_array, finite_scalar, real_number
 
@@ -51,6 +53,7 @@ __all__ = [
     "intercept",
     "intercept_window",
     "raid_windows",
+    "raid_roots",
     "shoot_3dof",
     "destination",
     "raid",
@@ -69,8 +72,14 @@ _SHORT_MISS_M = 1e12
 #: The 3DOF refinement stops once every solution lands this close (m): at rtol = 1e-9 the
 #: 3DOF's own end point is good to millimetres.
 _LANDED_M = 0.01
-#: At most this many 3DOF flights per solution in the refinement.
+#: At most this many 3DOF flights per solution in the refinement, and at most this many steps
+#: in a row that fail to halve the miss (where the 3DOF has no root near the MKS's).
 _MAX_FLIGHTS = 30
+_FAILURES = 4
+#: Where the 3DOF at the MKS solution falls short of the target's altitude, the elevation is
+#: raised by this (rad) up to this many times.
+_RAISES = 8
+_RAISE_RAD = math.radians(0.25)
 
 
 @dataclass(frozen=True)
@@ -587,14 +596,23 @@ def _refine_3dof(
             for s in solutions
         ]
     )
-    unknown = ~np.isfinite(jacobian).all(axis=(1, 2)) & np.isfinite(first)
+    # where the 3DOF at the MKS solution falls short of the target's altitude (the MKS's
+    # apogee just above it, the 3DOF's below), raise the elevation until it gets there
+    for _ in range(_RAISES):
+        short = everyone[~np.isfinite(miss[:, 0])]
+        if not short.size:
+            break
+        x[short, 0] = np.minimum(x[short, 0] + _RAISE_RAD, 0.5 * math.pi)
+        miss[short], time[short] = shots.miss(x[short], short)
+    unknown = ~np.isfinite(jacobian).all(axis=(1, 2)) & np.isfinite(miss[:, 0])
     if unknown.any():
         which = everyone[unknown]
         jacobian[which] = shots.jacobian(x[which], miss[which], which)
-    size = first.copy()
+    size = np.hypot(miss[:, 0], miss[:, 1])
+    failures = np.zeros(count, dtype=int)  # steps in a row that did not halve the miss
     active = np.isfinite(size) & (size > tolerance_m)
     while active.any():
-        which = everyone[active & (shots.flights < _MAX_FLIGHTS)]
+        which = everyone[active & (shots.flights < _MAX_FLIGHTS) & (failures < _FAILURES)]
         if not which.size:
             break
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -622,7 +640,9 @@ def _refine_3dof(
             new_miss[landed],
             new_time[landed],
         )
-        stalled = which[landed & (new_size > 0.5 * size[which]) & (new_size > tolerance_m)]
+        worse = landed & (new_size > 0.5 * size[which]) & (new_size > tolerance_m)
+        stalled = which[worse]
+        failures[which] = np.where(worse | ~landed, failures[which] + 1, 0)
         size[accepted] = new_size[landed]
         if stalled.size:
             jacobian[stalled] = shots.jacobian(x[stalled], miss[stalled], stalled)
@@ -637,9 +657,10 @@ def _refine_3dof(
         message = (
             f"landed within {tolerance_m:g} m"
             if converged
-            else "the 3DOF never reached the target's altitude at the MKS solution"
-            if not np.isfinite(first[i])
-            else f"stopped {size[i]:.3g} m from the target after {shots.flights[i]} flights"
+            else "the 3DOF never reached the target's altitude on the branch near the MKS solution"
+            if not np.isfinite(size[i])
+            else f"stopped {size[i]:.3g} m from the target after {shots.flights[i]} flights: "
+            "no 3DOF root near the MKS's"
         )
         results.append(
             Verification(
@@ -667,6 +688,7 @@ def verify_with_3dof(
     *,
     rtol: float = 1e-9,
     tolerance_m: float = _LANDED_M,
+    client=None,
 ) -> Verification: ...
 @overload
 def verify_with_3dof(
@@ -676,15 +698,17 @@ def verify_with_3dof(
     *,
     rtol: float = 1e-9,
     tolerance_m: float = _LANDED_M,
+    client=None,
 ) -> list[Verification]: ...
-def verify_with_3dof(gun, targets, solutions, *, rtol=1e-9, tolerance_m=_LANDED_M):
+def verify_with_3dof(gun, targets, solutions, *, rtol=1e-9, tolerance_m=_LANDED_M, client=None):
     """The 3DOF (the gun's own atmosphere, drag law and Earth rotation) fired at each MKS
     firing solution and its miss where it crosses its target's altitude on the solution's
     branch, then refined by shooting with the 3DOF until it lands within ``tolerance_m``: every
     solution flown together in the compiled batch, one flight per solution and Newton step,
     the MKS's own Jacobian at the root (updated by Broyden's rule) in place of differences.
     One target and solution, or sequences of them (one Verification each, the same answers
-    either way)."""
+    either way); given a Dask ``client``, the solutions are shared out in chunks among its
+    workers (:func:`.sweeps.sweep`)."""
     gun = _check_gun(gun)
     points, single = _check_targets(targets)
     chosen = [solutions] if single else list(solutions) if isinstance(solutions, Sequence) else None
@@ -702,8 +726,19 @@ def verify_with_3dof(gun, targets, solutions, *, rtol=1e-9, tolerance_m=_LANDED_
         real_number(tolerance_m, "tolerance_m"), "tolerance_m", low=0.0, low_inclusive=False
     )
     rtol = check_range(real_number(rtol, "rtol"), "rtol", low=0.0, low_inclusive=False, high=1e-3)
-    results = _refine_3dof(gun, points, chosen, rtol, tolerance)
+    if client is None:
+        results = _refine_3dof(gun, points, chosen, rtol, tolerance)
+    else:
+        refine = partial(_refine_chunk, gun=gun, rtol=rtol, tolerance_m=tolerance)
+        chunks = sweep(refine, _chunks(list(zip(points, chosen)), client), client=client)
+        results = [result for chunk in chunks for result in chunk]
     return results[0] if single else results
+
+
+def _refine_chunk(chunk, gun, rtol, tolerance_m) -> list[Verification]:
+    """:func:`_refine_3dof` of a chunk of (target, solution) pairs (a Dask worker's share)."""
+    targets, solutions = zip(*chunk, strict=True)
+    return _refine_3dof(gun, list(targets), list(solutions), rtol, tolerance_m)
 
 
 # --- part 2: intercepts of a ballistic target (Chapter 7 A) -----------------------------------
@@ -767,7 +802,7 @@ class KeplerTarget:
             high = np.where(excess > 0, x, high)
             low = np.where(excess > 0, low, x)
             step = x - excess / slope
-            new = np.where((step > low) & (step < high), step, 0.5 * (low + high))
+            new = np.where((step >= low) & (step <= high), step, 0.5 * (low + high))
             done = np.max(np.abs(new - x), initial=0.0) <= _KEPLER_TOLERANCE_RAD * max(
                 1.0, float(np.max(np.abs(x), initial=0.0))
             )
@@ -1001,10 +1036,12 @@ def raid_windows(
     count: int = 50,
     branch: str = "ascending",
     bearing_limits_deg: tuple[float, float] | None = None,
+    client=None,
 ) -> list[InterceptWindow]:
     """:func:`intercept_window` of every target of a raid, every intercept of every target
     solved in one call of the compiled solver: at ``times_s`` (s, the same for every target)
-    or at ``count`` times over each target's flight."""
+    or at ``count`` times over each target's flight. Given a Dask ``client``, the targets are
+    shared out in chunks among its workers (:func:`.sweeps.sweep`)."""
     gun = _check_gun(gun)
     if isinstance(targets, KeplerTarget) or not isinstance(targets, Sequence):
         raise TypeError(f"targets must be a sequence of KeplerTarget; got {type(targets).__name__}")
@@ -1014,7 +1051,31 @@ def raid_windows(
     if times_s is None:
         count = int(check_range(real_number(count, "count"), "count", low=1))
     times = [_window_times(target, times_s, count) for target in targets]
+    if client is not None:
+        solve = partial(_raid_chunk, gun=gun, branch=branch, limits=limits)
+        chunks = sweep(solve, _chunks(list(zip(targets, times)), client), client=client)
+        return [window for chunk in chunks for window in chunk]
     return [_window(items) for items in _intercepts(gun, targets, times, branch, limits)]
+
+
+def _raid_chunk(chunk, gun, branch, limits) -> list[InterceptWindow]:
+    """The windows of a chunk of (target, times) pairs (a Dask worker's share of a raid)."""
+    targets, times = zip(*chunk, strict=True)
+    return [_window(items) for items in _intercepts(gun, targets, times, branch, limits)]
+
+
+def _chunks(items: list, client) -> list[list]:
+    """``items`` in chunks, four for each of the cluster's threads."""
+    threads = max(1, sum(client.nthreads().values()))
+    size = max(1, math.ceil(len(items) / (4 * threads)))
+    return [items[start : start + size] for start in range(0, len(items), size)]
+
+
+def raid_roots(windows: Sequence[InterceptWindow]) -> list[tuple[Intercept, FiringSolution]]:
+    """Every root of every feasible intercept of ``windows``, with its intercept: what
+    :func:`verify_with_3dof` refines (``[item.aim for item, _ in pairs]``, ``[root for _,
+    root in pairs]``)."""
+    return [(item, root) for window in windows for item in window.intercepts for root in item.roots]
 
 
 # --- the 3DOF alone, and the Chapter 7 counts --------------------------------------------------

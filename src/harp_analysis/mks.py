@@ -399,7 +399,8 @@ def _interval_time(table, i, tau, growth, low, high, nodes, weights):
 #: e^{-tau theta} sets the integrand's fastest variation (within 20/tau it has died to e^-20;
 #: past it u is a conic and h constant to 2e-9). With 8 points each, the time of flight to
 #: the impact agrees with 4,000 equal intervals to 1 ns over 1-89.8 deg for HP, LP and the
-#: baseline from Barbados (16 equal intervals: 0.2 ns, for 128 evaluations against 40).
+#: baseline from Barbados (16 equal intervals: 0.2 ns, for 128 evaluations against 40); with
+#: 6 points, to 0.12 us.
 _TIME_BREAKS = (1.0, 3.0, 8.0, 20.0)
 
 
