@@ -175,6 +175,37 @@ def test_the_refined_solution_lands_the_3dof_on_the_target(hp_targets):
             assert check.flights >= 3
 
 
+def test_the_batched_refinement_lands_every_root_and_gives_the_one_by_one_answers():
+    """Every root of targets in all four quadrants, aloft and at sea level, refined together:
+    each lands the 3DOF (flown again, directly) within the tolerance of its target, in a few
+    flights (the MKS's Jacobian stands in for differences), and each is what refining it
+    alone gives."""
+    targets = [
+        _destination(ROTATING, bearing, distance, altitude_m=altitude)
+        for bearing in (30.0, 120.0, 210.0, 300.0)
+        for distance, altitude in ((80e3, 0.0), (160e3, 20e3))
+    ]
+    pairs = [
+        (target, root)
+        for target, result in zip(targets, firing_solutions(ROTATING, targets))
+        for root in result.roots
+    ]
+    assert len(pairs) == 2 * len(targets)
+    aims, roots = zip(*pairs)
+    together = verify_with_3dof(ROTATING, list(aims), list(roots), tolerance_m=1.0)
+    for target, root, check in zip(aims, roots, together, strict=True):
+        assert check.converged, check.message
+        flight = threedof.fly_3dof(
+            ROTATING.but(elevation_deg=check.elevation_deg, bearing_deg=check.bearing_deg),
+            end_altitude_m=target.altitude_m,
+        )
+        assert np.linalg.norm(flight.end_position_m[:, 0] - target.earth_fixed_m()) < 1.0
+        assert 2 <= check.flights <= 12
+        alone = verify_with_3dof(ROTATING, target, root, tolerance_m=1.0)
+        assert alone.elevation_deg == check.elevation_deg
+        assert alone.flights == check.flights
+
+
 def test_fire_time_is_the_arrival_time_less_the_time_of_flight():
     target = _destination(ROTATING, 60.0, 150e3)
     timed = firing_solutions(ROTATING, TargetPoint(**{**target.__dict__, "arrival_time_s": 400}))

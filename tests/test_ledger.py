@@ -19,6 +19,7 @@ def test_claim_verdict_matches_computed_value(claim):
     )
     # every row guards its value, whatever the verdict
     assert ledger.range_problem(result) is None, f"{claim.id}: {ledger.range_problem(result)}"
+    assert "<<" not in result.explanation  # every quoted number is the computation's
 
 
 def test_ledger_rows_are_complete():
@@ -164,3 +165,21 @@ def test_chapter_5_worst_case_is_scored_in_both_airs():
         if claim.compute == "harp_analysis.rotating:worst_error_at_apogee_km"
     }
     assert airs == {"two_segment", "three_layer"}
+
+
+def test_explanations_quote_the_computation_and_name_what_it_lacks(tmp_path):
+    row = ROW.format(x=1.0, verdict="reproduces", explanation="", extra="")
+    row = row.replace(
+        'compute = "numpy:asarray"\nkwargs = { a = 1.0 }',
+        'compute = "fractions:Fraction"\nkwargs = { numerator = 3, denominator = 4 }',
+    )
+    quoted = row.replace(
+        'explanation = ""', 'explanation = "<<numerator>> in <<denominator:d>> is <<value:.2f>>"'
+    )
+    result = ledger.evaluate(ledger.load_claims(_write(tmp_path, quoted))[0])
+    assert result.explanation == "3 in 4 is 0.75"
+    lacking = row.replace('explanation = ""', 'explanation = "<<numerators>>"')
+    (tmp_path / "b").mkdir()
+    result = ledger.evaluate(ledger.load_claims(_write(tmp_path / "b", lacking))[0])
+    with pytest.raises(ValueError, match="numerators"):
+        result.explanation

@@ -9,7 +9,9 @@ Earth-fixed end point to the target's (:meth:`.fire_control.TargetPoint.earth_fi
 is the first step of :func:`.fire_control.verify_with_3dof` without its shooting refinement,
 which would be far too slow for a map. Points with no firing solution keep the reason.
 
-The points run through :func:`.sweeps.sweep`: in this process, or on a Dask cluster.
+The points run through :func:`.sweeps.sweep`, an altitude's row of them at a time (solved
+together by the compiled solver, the 3DOF flown at them as one batch): in this process, or on
+a Dask cluster.
 
 SI inside (m, s, rad); degrees only in the arguments and columns named ``_deg``.
 """
@@ -25,7 +27,7 @@ import pandas as pd
 
 from . import threedof
 from .fire_control import FiringSolution, TargetPoint, destination, firing_solutions
-from .launch import Launch
+from .launch import Launch, Launches
 from .sweeps import sweep
 from .trajectory import TruncatedFlightWarning
 from .validation import check_choice, check_range, finite_array, real_number
@@ -58,61 +60,80 @@ def three_dof_miss(
     """The 3DOF (the gun's atmosphere, drag law and Earth rotation) fired once at the firing
     ``solution``: the distance (m) from where it crosses the target's altitude on the
     solution's branch to the target; NaN if it never gets there (within the 3DOF's time)."""
-    laid = gun.but(elevation_deg=solution.elevation_deg, bearing_deg=solution.bearing_deg)
+    return float(_three_dof_misses(gun, [target], [solution], rtol)[0])
+
+
+def _three_dof_misses(gun: Launch, targets, solutions, rtol: float) -> np.ndarray:
+    """:func:`three_dof_miss` of every (target, solution) pair, flown as one 3DOF batch."""
+    laid = Launches.from_launches([gun]).but(
+        elevation_deg=np.array([s.elevation_deg for s in solutions]),
+        bearing_deg=np.array([s.bearing_deg for s in solutions]),
+    )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", TruncatedFlightWarning)  # reported as NaN below
         flight = threedof.fly_3dof(
             laid,
             rtol=rtol,
-            end_altitude_m=target.altitude_m,
-            rising=solution.branch == "ascending",
+            end_altitude_m=np.array([t.altitude_m for t in targets]),
+            rising=np.array([s.branch == "ascending" for s in solutions]),
         )
-    if not flight.impact[0]:
-        return math.nan
     # the 3DOF's Earth-fixed frame has its x axis toward longitude 0
-    return float(np.linalg.norm(flight.end_position_m[:, 0] - target.earth_fixed_m()))
+    aims = np.array([t.earth_fixed_m() for t in targets])
+    distance = np.linalg.norm(flight.end_position_m.T - aims, axis=1)
+    return np.where(flight.impact, distance, np.nan)
 
 
-def _point(
-    point: tuple[float, float], gun: Launch, bearing_deg: float, roots: tuple[str, ...], rtol: float
+def _points(
+    points: list[tuple[float, float]],
+    gun: Launch,
+    bearing_deg: float,
+    roots: tuple[str, ...],
+    rtol: float,
 ) -> list[dict]:
-    """The rows of the point ``(downrange_m, altitude_m)``, one per root of ``roots``: its
-    firing solution and the 3DOF's miss there, or why there is none."""
-    downrange, altitude = point
-    target = destination(gun, bearing_deg, downrange, altitude)
-    solutions = firing_solutions(gun, target)
-    rows = []
-    for root in roots:
-        row: dict[str, object] = dict.fromkeys(MAP_COLUMNS, math.nan)
-        row.update(
-            map_bearing_deg=bearing_deg,
-            root=root,
-            downrange_m=downrange,
-            altitude_m=altitude,
-            latitude_deg=target.latitude_deg,
-            longitude_deg=target.longitude_deg,
-            leaves_atmosphere=None,
-            reason=None,
-        )
-        rows.append(row)
-        solution = solutions.low if root == "low" else solutions.high
-        if solution is None:
-            # the reason names each missing root; keep this root's part
-            parts = [p for p in (solutions.reason or "").split("; ") if f"no {root}-angle" in p]
-            row["reason"] = parts[0] if parts else solutions.reason
-            continue
-        row.update(
-            elevation_deg=solution.elevation_deg,
-            bearing_deg=solution.bearing_deg,
-            time_of_flight_s=solution.time_of_flight_s,
-            beta=solution.beta,
-            leaves_atmosphere=solution.leaves_atmosphere,
-            mks_miss_m=solution.miss_m,
-        )
-        miss = three_dof_miss(gun, target, solution, rtol=rtol)
-        row["miss_3dof_m"] = miss
-        if not math.isfinite(miss):
-            row["reason"] = "the 3DOF fired at the MKS solution never reaches the target's altitude"
+    """The rows of the points ``(downrange_m, altitude_m)``, one per root of ``roots``: its
+    firing solution and the 3DOF's miss there, or why there is none (all solved together,
+    the 3DOF flights as one batch)."""
+    targets = [destination(gun, bearing_deg, downrange, altitude) for downrange, altitude in points]
+    rows, flown = [], []
+    for (downrange, altitude), target, solutions in zip(
+        points, targets, firing_solutions(gun, targets), strict=True
+    ):
+        for root in roots:
+            row: dict[str, object] = dict.fromkeys(MAP_COLUMNS, math.nan)
+            row.update(
+                map_bearing_deg=bearing_deg,
+                root=root,
+                downrange_m=downrange,
+                altitude_m=altitude,
+                latitude_deg=target.latitude_deg,
+                longitude_deg=target.longitude_deg,
+                leaves_atmosphere=None,
+                reason=None,
+            )
+            rows.append(row)
+            solution = solutions.low if root == "low" else solutions.high
+            if solution is None:
+                # the reason names each missing root; keep this root's part
+                parts = [p for p in (solutions.reason or "").split("; ") if f"no {root}-angle" in p]
+                row["reason"] = parts[0] if parts else solutions.reason
+                continue
+            row.update(
+                elevation_deg=solution.elevation_deg,
+                bearing_deg=solution.bearing_deg,
+                time_of_flight_s=solution.time_of_flight_s,
+                beta=solution.beta,
+                leaves_atmosphere=solution.leaves_atmosphere,
+                mks_miss_m=solution.miss_m,
+            )
+            flown.append((row, target, solution))
+    if flown:
+        chosen, aims, solved = zip(*flown, strict=True)
+        for row, miss in zip(chosen, _three_dof_misses(gun, aims, solved, rtol), strict=True):
+            row["miss_3dof_m"] = miss
+            if not math.isfinite(miss):
+                row["reason"] = (
+                    "the 3DOF fired at the MKS solution never reaches the target's altitude"
+                )
     return rows
 
 
@@ -147,13 +168,15 @@ def miss_map(
     if altitudes.size == 0 or np.any(altitudes < 0):
         raise ValueError("altitudes_m must be one or more altitudes >= 0 (m)")
     points = [(float(x), float(h)) for h in altitudes for x in ranges]
+    # one altitude's points a chunk: each solved by the compiled solver and flown as one batch
+    chunks = [points[start : start + ranges.size] for start in range(0, len(points), ranges.size)]
     rows = sweep(
-        partial(_point, gun=gun, bearing_deg=bearing_deg, roots=roots, rtol=rtol),
-        points,
+        partial(_points, gun=gun, bearing_deg=bearing_deg, roots=roots, rtol=rtol),
+        chunks,
         client=client,
         progress=progress,
         description=f"miss map, bearing {bearing_deg:g} deg",
     )
-    frame = pd.DataFrame([row for point in rows for row in point], columns=list(MAP_COLUMNS))
+    frame = pd.DataFrame([row for chunk in rows for row in chunk], columns=list(MAP_COLUMNS))
     frame.attrs.update(gun=gun, bearing_deg=bearing_deg, root=root, rtol=rtol)
     return frame

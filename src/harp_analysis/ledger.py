@@ -13,6 +13,12 @@ numbers (:func:`verdict_problems`), so a verdict cannot silently go stale:
   explanation.
 
 Tolerances are absolute in the row's unit, or relative when ``tolerance_kind = "relative"``.
+An explanation may quote the computation's own numbers instead of typing them: ``<<name>>`` or
+``<<name:format>>`` (a format spec, as ``<<apogee_km:.1f>>``) is replaced by the attribute
+``name`` (dotted for an attribute of an attribute) of what ``compute`` returned, before
+``field`` picks the value; ``<<value>>`` is the computed value itself. A number so quoted
+cannot drift from the computation (:func:`ClaimResult.explanation`).
+
 A claim that is a bound ("less than 1 %", "over 4 degrees") sets ``bound = "upper"`` or
 ``"lower"``: only a computed value on the wrong side of the text's counts as a deviation.
 
@@ -93,10 +99,34 @@ class Claim:
         return tuple(_figures_in(self.source)) if self.ties is None else tuple(self.ties)
 
 
+_QUOTE = re.compile(r"<<([A-Za-z_][\w.]*)(?::([^>]*))?>>")
+
+
 @dataclass(frozen=True)
 class ClaimResult:
     claim: Claim
     computed: float
+    details: object = None  # what the compute returned, whose attributes explanations quote
+
+    @property
+    def explanation(self) -> str:
+        """The claim's explanation with every ``<<name:format>>`` quoted from :attr:`details`
+        (``<<value>>``: the computed value); a name it lacks is a ValueError naming the row."""
+
+        def quote(match: re.Match) -> str:
+            name, spec = match.group(1), match.group(2) or ""
+            value: object = self.computed if name == "value" else self.details
+            if name != "value":
+                for part in name.split("."):
+                    if not hasattr(value, part):
+                        raise ValueError(
+                            f"claim {self.claim.id!r}: its explanation quotes <<{name}>>, "
+                            f"which {self.claim.compute} does not return"
+                        )
+                    value = getattr(value, part)
+            return format(value, spec)
+
+        return _QUOTE.sub(quote, self.claim.explanation)
 
     @property
     def deviation(self) -> float:
@@ -170,10 +200,10 @@ def load_claims(path: Path | None = None) -> tuple[Claim, ...]:
 def evaluate(claim: Claim) -> ClaimResult:
     """Compute the project's value of ``claim`` by calling the package."""
     module_name, _, attribute = claim.compute.partition(":")
-    result = getattr(importlib.import_module(module_name), attribute)(**claim.kwargs)
+    details = result = getattr(importlib.import_module(module_name), attribute)(**claim.kwargs)
     for name in claim.field.split(".") if claim.field else ():
         result = getattr(result, name)
-    return ClaimResult(claim, float(result) * claim.scale)
+    return ClaimResult(claim, float(result) * claim.scale, details)
 
 
 def evaluate_all(prefix: str | tuple[str, ...] = "") -> list[ClaimResult]:
@@ -296,7 +326,7 @@ def render_claims(target: Path | None = None) -> Path:
             f"{text} | {_number(r.computed, printed_digits(r))} | {_cell(c.unit)} | "
             f"{tolerance(c.tolerance)} | {tolerance(c.close_tolerance)} | {expected} | "
             f"**{c.verdict}** | "
-            f"{_cell(c.explanation)} |"
+            f"{_cell(r.explanation)} |"
         )
     text = "\n".join(lines) + "\n"
     return paths.write_atomically(target, lambda path: path.write_text(text))
