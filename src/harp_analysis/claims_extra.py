@@ -843,24 +843,66 @@ def firing_solution(
     return float(elevation), len(calls), int(sum(calls))
 
 
-def firing_solution_evaluations(method: str = "mks", **target) -> int:
+@dataclasses.dataclass(frozen=True)
+class FiringEvaluations:
+    """A firing solution's count (:func:`firing_solution`): ``evaluations`` (MKS solutions, or
+    the 3DOF's right-hand sides), the solver's iterations and the elevation found."""
+
+    evaluations: int
+    iterations: int
+    elevation_deg: float
+
+    @property
+    def per_iteration(self) -> float:
+        return self.evaluations / self.iterations
+
+
+def firing_solution_evaluations(method: str = "mks", **target) -> FiringEvaluations:
     """Evaluations a firing solution takes (:func:`firing_solution`): MKS solutions for
     ``method="mks"``, the 3DOF's right-hand-side evaluations for ``"3dof"``."""
-    _, iterations, evaluations = firing_solution(method, **target)
-    return iterations if method == "mks" else evaluations
+    elevation, iterations, evaluations = firing_solution(method, **target)
+    return FiringEvaluations(iterations if method == "mks" else evaluations, iterations, elevation)
 
 
-def firing_solutions_per_3dof_solution(**target) -> float:
-    """log10 of how many MKS firing solutions cost the operations of one 3DOF firing solution
-    (:func:`firing_solution`; operations per 3DOF evaluation and per MKS evaluation from
-    :func:`effort.effort_table`'s counts for HP's flight and apogee)."""
+@dataclasses.dataclass(frozen=True)
+class SolutionsPerSolve:
+    """MKS firing solutions against one 3DOF firing solution, by operations
+    (:func:`firing_solutions_per_3dof_solution`)."""
+
+    three_dof_evaluations: int
+    operations_per_evaluation: float
+    mks_iterations: int
+    mks_operations: float  # of one MKS evaluation
+
+    @property
+    def three_dof_operations(self) -> float:
+        return self.three_dof_evaluations * self.operations_per_evaluation
+
+    @property
+    def mks_solution_operations(self) -> float:
+        return self.mks_iterations * self.mks_operations
+
+    @property
+    def solutions(self) -> float:
+        """MKS firing solutions that cost the operations of one 3DOF firing solution."""
+        return self.three_dof_operations / self.mks_solution_operations
+
+    @property
+    def log10_solutions(self) -> float:
+        return math.log10(self.solutions)
+
+
+def firing_solutions_per_3dof_solution(**target) -> SolutionsPerSolve:
+    """How many MKS firing solutions cost the operations of one 3DOF firing solution, as
+    ``log10_solutions`` (:func:`firing_solution`; operations per 3DOF evaluation and per MKS
+    evaluation from :func:`effort.effort_table`'s counts for HP's flight and apogee)."""
     table = effort.effort_table()
     per_evaluation = (
         float(table.flops["3DOF"]) / threedof.simulate_3dof(HP_CHAPTER_2).attrs["rhs_evaluations"]
     )
     _, iterations, _ = firing_solution("mks", **target)
-    three = firing_solution("3dof", **target)[2] * per_evaluation
-    return math.log10(three / (iterations * float(table.flops["MKS (3 terms)"])))
+    three = firing_solution("3dof", **target)[2]
+    return SolutionsPerSolve(three, per_evaluation, iterations, float(table.flops["MKS (3 terms)"]))
 
 
 # --- Chapter 7 B-C: other uncertainties, ground fire ---------------------------------------------
