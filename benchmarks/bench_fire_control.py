@@ -82,6 +82,9 @@ def _raid(smoke: bool, targets: int, times: int) -> None:
     intercepts = sum(len(window.intercepts) for window in windows)
     feasible = sum(int(window.feasible.sum()) for window in windows)
     solves = sum(window.mks_solves for window in windows)
+    lost = sum(
+        "refinement stopped" in (item.reason or "") for w in windows for item in w.intercepts
+    )
     # the batch gives the answers of one-by-one solves
     for window in windows[:2]:
         for item in window.intercepts[:3]:
@@ -129,7 +132,7 @@ def _raid(smoke: bool, targets: int, times: int) -> None:
         f"  MKS raid:      {mks_s:7.3f} s, {mks_s / intercepts * 1e3:.3f} ms per intercept "
         f"({solves / intercepts:.0f} MKS trajectories each); target 0.2 ms: "
         f"{verdict(mks_s / intercepts, 0.2e-3)}; moonshot 50 us: "
-        f"{verdict(mks_s / intercepts, 50e-6)}"
+        f"{verdict(mks_s / intercepts, 50e-6)}; roots lost by the refinement: {lost}"
     )
     print(
         f"  verified raid: {verified_s:7.3f} s (3DOF {verify_s:.3f} s), "

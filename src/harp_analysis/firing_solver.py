@@ -18,7 +18,12 @@ Per target: a grid of elevations at the great-circle bearing, its best point ref
 section to the maximum range (so that two roots closer than the grid are not stepped over),
 then each side's sign change refined by Newton's method on (elevation, bearing), its first
 Jacobian by forward differences and Broyden's updates after, elevation kept on its side of the
-maximum range. Every number is SI (m, s, rad).
+maximum range. The differences are two of the handful of trajectories a root's Newton takes,
+and the search most of a solve's (``evaluations`` and the counts :func:`solve` returns), so
+analytic derivatives of the closed form would not pay; the Jacobian at the root is returned,
+and the 3DOF's refinement (:func:`.fire_control.verify_with_3dof`) starts from it instead of
+differencing the 3DOF. Every number is SI (m, s, rad); the physics is :mod:`.eci`'s and
+:mod:`.mks`'s (their formulas and kernels, compiled in here), not a copy.
 """
 
 from __future__ import annotations
