@@ -14,6 +14,7 @@ from harp_analysis.fire_control import (
     FiringSolution,
     TargetPoint,
     firing_solutions,
+    raid_windows,
     verify_with_3dof,
 )
 from harp_analysis.launch import Launch
@@ -249,7 +250,20 @@ def test_bad_input_is_refused_by_name():
         firing_solutions(VACUUM, target, bearing_limits_deg=90.0)
     with pytest.raises(TypeError, match="solution"):
         verify_with_3dof(VACUUM, target, None)
-    assert isinstance(firing_solutions(VACUUM, target).low, FiringSolution)
+    with pytest.raises(TypeError, match=r"targets\[1\]"):
+        firing_solutions(VACUUM, [target, "x"])
+    root = firing_solutions(VACUUM, target).low
+    assert isinstance(root, FiringSolution)
+    with pytest.raises(ValueError, match="one FiringSolution per target"):
+        verify_with_3dof(VACUUM, [target, target], [root])
+    with pytest.raises(ValueError, match="tolerance_m"):
+        verify_with_3dof(VACUUM, target, root, tolerance_m=0.0)
+    with pytest.raises(TypeError, match="targets"):
+        raid_windows(VACUUM, "raid")
+    with pytest.raises(ValueError, match="end_altitude_m"):
+        threedof.fly_3dof(VACUUM, end_altitude_m=[1.0, 2.0])
+    with pytest.raises(TypeError, match="rising"):
+        threedof.fly_3dof(VACUUM, rising="yes")
 
 
 _ILLEGAL = {

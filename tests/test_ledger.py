@@ -182,4 +182,4 @@ def test_explanations_quote_the_computation_and_name_what_it_lacks(tmp_path):
     (tmp_path / "b").mkdir()
     result = ledger.evaluate(ledger.load_claims(_write(tmp_path / "b", lacking))[0])
     with pytest.raises(ValueError, match="numerators"):
-        result.explanation
+        _ = result.explanation

@@ -1048,9 +1048,12 @@ def raid_windows(
     or at ``count`` times over each target's flight. Given a Dask ``client``, the targets are
     shared out in chunks among its workers (:func:`.sweeps.sweep`)."""
     gun = _check_gun(gun)
-    if isinstance(targets, KeplerTarget) or not isinstance(targets, Sequence):
+    if isinstance(targets, KeplerTarget | str | bytes) or not isinstance(targets, Sequence):
         raise TypeError(f"targets must be a sequence of KeplerTarget; got {type(targets).__name__}")
-    targets = [_check_kepler_target(target) for target in targets]
+    for index, target in enumerate(targets):
+        if not isinstance(target, KeplerTarget):
+            raise TypeError(f"targets[{index}] must be a KeplerTarget; got {type(target).__name__}")
+    targets = list(targets)
     branch = check_choice(branch, "branch", BRANCHES)
     limits = _check_bearing_limits(bearing_limits_deg)
     if times_s is None:
