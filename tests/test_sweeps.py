@@ -2,6 +2,7 @@
 Dask cluster, bit for bit the same, with bounded memory and no sample lost or duplicated when a
 worker dies; and the seeded sample whose chunks, concatenated, are the single draw."""
 
+import dataclasses
 import itertools
 import logging
 import operator
@@ -331,3 +332,22 @@ def test_a_worker_killed_mid_sweep_loses_and_duplicates_no_sample(client):
     assert np.array_equal(np.concatenate(samples), sample_chunk(SEED, 2, range(300), "random"))
     client.wait_for_workers(2, timeout=30)
     assert victim not in client.run(os.getpid).values()  # the worker did die mid-sweep
+
+
+@on_cluster
+def test_a_raid_and_its_verification_are_the_same_on_the_cluster(client):
+    from harp_analysis import fire_control
+
+    gun = fire_control.BARBADOS_HP
+    raid = fire_control.raid(gun, 3)
+    here = fire_control.raid_windows(gun, raid, count=8)
+    there = fire_control.raid_windows(gun, raid, count=8, client=client)
+    assert [w.intercepts for w in here] == [w.intercepts for w in there]
+    pairs = fire_control.raid_roots(here)
+    assert pairs, "the small raid has feasible intercepts"
+    aims, roots = [item.aim for item, _ in pairs], [root for _, root in pairs]
+    local = fire_control.verify_with_3dof(gun, aims, roots, tolerance_m=1.0)
+    remote = fire_control.verify_with_3dof(gun, aims, roots, tolerance_m=1.0, client=client)
+    np.testing.assert_equal(
+        [dataclasses.astuple(v) for v in remote], [dataclasses.astuple(v) for v in local]
+    )

@@ -669,7 +669,7 @@ def _refine_3dof(
         )
         results.append(
             Verification(
-                mks_miss_m=float(first[i]),
+                mks_miss_m=float(first[i]) if np.isfinite(first[i]) else math.inf,
                 elevation_deg=elevation,
                 bearing_deg=bearing,
                 elevation_change_deg=elevation - solution.elevation_deg,
