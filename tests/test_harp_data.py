@@ -224,13 +224,18 @@ def _with_field(site, column, value):
         ("barbados", "mass_kg", "-83.2356", r"\(50, 150\) kg"),
         ("barbados", "mass_kg", "183.5", r"\(50, 150\) kg"),  # pounds
         ("barbados", "apogee_km", "119000", r"\(10, 500\) km"),  # metres
-        ("barbados", "vo_km_s", "1770", r"\(0.5, 5\) km/s"),
+        ("barbados", "vo_km_s", "1770", r"\(1, 5\) km/s"),
         ("barbados", "mach", "0.9", r"\(1, 20\)"),
-        ("barbados", "mu_deg", "-14.01", r"\[0, 90\] deg"),
+        ("barbados", "mu_deg", "-14.01", r"\[1, 30\] deg"),
+        ("barbados", "mu_deg", "0.24", r"\[1, 30\] deg"),  # radians
+        ("yuma", "mu_deg", "0.21", r"\[1, 30\] deg"),  # radians
         ("barbados", "v_tangent_km_s", "-0.08", r"\[0, 6\) km/s"),
-        ("barbados", "corrected_elevation_deg", "91", r"\[0, 90\] deg"),
+        ("barbados", "corrected_elevation_deg", "91", r"\[10, 90\) deg"),
+        ("barbados", "corrected_elevation_deg", "1.24", r"\[10, 90\) deg"),  # radians
         ("barbados", "corrected_velocity_km_s", "1e999", r"\(0, 6\) km/s"),
-        ("barbados", "corrected_azimuth_deg", "361", r"\[0, 360\] deg"),
+        ("barbados", "corrected_azimuth_deg", "361", r"\[79, 139\] deg"),
+        ("barbados", "corrected_azimuth_deg", "1.66", r"\[79, 139\] deg"),  # radians
+        ("yuma", "corrected_azimuth_deg", "1.51", r"\[48, 108\] deg"),  # radians
         ("barbados", "beta", "0", r"\(0, 5\)"),
         ("barbados", "li_km2_s", "3.82102e9", r"\(0, 40000\) km2/s"),
         ("barbados", "round", "0", r"\[1, inf\)"),
@@ -250,10 +255,11 @@ def test_implausible_value_raises_naming_file_line_column(tmp_path, site, column
 @pytest.mark.parametrize(
     "column, value",
     [
-        ("mu_deg", "0"),
-        ("mu_deg", "90"),
-        ("corrected_azimuth_deg", "0"),
-        ("corrected_azimuth_deg", "360"),
+        ("mu_deg", "1"),
+        ("mu_deg", "30"),
+        ("corrected_elevation_deg", "10"),
+        ("corrected_azimuth_deg", "79"),
+        ("corrected_azimuth_deg", "139"),
         ("v_tangent_km_s", "0"),
         ("round", "1"),
     ],
@@ -290,8 +296,9 @@ def test_header_only_file_is_refused(tmp_path):
 @pytest.mark.parametrize(
     "row, pattern",
     [
-        ("yuma\t4\t59300", r"line 3, column 'vo_ft_s': '59300' is outside .*\(1000, 15000\) ft/s"),
+        ("yuma\t4\t59300", r"line 3, column 'vo_ft_s': '59300' is outside .*\(3281, 16404\) ft/s"),
         ("yuma\t4\t1.81", r"column 'vo_ft_s': '1.81' is outside"),
+        ("yuma\t4\t1807.5", r"column 'vo_ft_s': '1807.5' is outside .* in m/s"),  # m/s
         ("yuma\t0\t5930", r"column 'round': '0' is outside"),
         ("Yuma\t4\t5930", r"line 3, column 'site': 'Yuma' is not one of"),
         ("barbados\t4\t5930", r"no rows for site 'yuma'"),

@@ -10,7 +10,8 @@ Every loader checks on load, raising :class:`HarpDataError` naming the file, lin
   data row;
 - that every value lies within :data:`PLAUSIBLE_RANGES` (wide physical limits, in the file's
   printed units, so that a value typed in the wrong unit fails: an apogee in metres, a mass in
-  pounds);
+  pounds, an angle in radians, a muzzle speed in m/s in the ft/s file), and each corrected
+  azimuth within :data:`AZIMUTH_TURN_DEG` of its site's gun bearing;
 - the file's SHA-256 against the ``SHA256SUMS`` beside it (see :func:`load_appendix`);
   ``verify=False`` skips this check only.
 """
@@ -26,7 +27,7 @@ from typing import NamedTuple
 import pandas as pd
 
 from .paths import HARP_DATA_DIR
-from .sites import get_site
+from .sites import LaunchSite, get_site
 
 __all__ = [
     "HarpDataError",
@@ -37,6 +38,7 @@ __all__ = [
     "verify_checksums",
     "MUZZLE_SPEEDS_FILE",
     "PLAUSIBLE_RANGES",
+    "AZIMUTH_TURN_DEG",
     "Bounds",
 ]
 
@@ -85,17 +87,29 @@ PLAUSIBLE_RANGES: dict[str, Bounds] = {
     "error_km": Bounds(-100, 100, "km", "an apogee difference; a value in metres exceeds it"),
     "apogee_km": Bounds(10, 500, "km", "gun-launched apogees; an apogee in metres (122000) fails"),
     "mass_kg": Bounds(50, 150, "kg", "Martlet 2C rounds are ~77-85 kg; pounds (~185) fail"),
-    "vo_km_s": Bounds(0.5, 5, "km/s", "gun muzzle speeds; a speed in m/s or ft/s fails"),
+    "vo_km_s": Bounds(1, 5, "km/s", "hypersonic gun muzzle speeds; a speed in m/s or ft/s fails"),
     "mach": Bounds(1, 20, "", "supersonic: Vo's limits over a 250-350 m/s speed of sound"),
-    "mu_deg": Bounds(0, 90, "deg", "the angle between two upward velocities", True, True),
+    "mu_deg": Bounds(
+        1,
+        30,
+        "deg",
+        "the Earth's rotation (0.39-0.45 km/s at both sites) turns a ~2 km/s launch by 10-15 deg; "
+        "an angle in radians (< 0.53) fails",
+        True,
+        True,
+    ),
     "beta": Bounds(0, 5, "", "a positive dimensionless drag parameter (eq. 6.11), printed ~0.2"),
     "v_tangent_km_s": Bounds(0, 6, "km/s", "a speed no larger than the launch speed", True),
-    "corrected_elevation_deg": Bounds(0, 90, "deg", "an upward elevation", True, True),
+    "corrected_elevation_deg": Bounds(
+        10, 90, "deg", "an apogee shot's elevation (70-75 deg here); radians (< 1.6) fail", True
+    ),
     "corrected_velocity_km_s": Bounds(0, 6, "km/s", "Vo plus < 0.47 km/s of Earth rotation"),
     "corrected_azimuth_deg": Bounds(0, 360, "deg", "a bearing from true north", True, True),
     "li_km2_s": Bounds(0, 40_000, "km2/s", "|V| r0 cos(phi) <= 6 km/s x 6400 km; m2/s fails"),
     "delta_apogee_km": Bounds(-100, 100, "km", "an apogee difference, as error_km"),
-    "vo_ft_s": Bounds(1000, 15_000, "ft/s", "a positive gun muzzle speed, 0.3-4.6 km/s"),
+    "vo_ft_s": Bounds(
+        3281, 16_404, "ft/s", "vo_km_s's 1-5 km/s; a HARP speed in m/s (1600-2200) or km/s fails"
+    ),
 }
 
 
@@ -105,6 +119,25 @@ class _Column(NamedTuple):
 
 
 # File column name -> loaded column; shared by both appendices.
+#: How far a corrected azimuth may lie from its site's gun bearing: the Earth's rotation turns
+#: the bearing by about the misalignment angle (at most mu_deg's 30 deg).
+AZIMUTH_TURN_DEG = 30.0
+
+
+def _azimuth_bounds(site: LaunchSite) -> Bounds:
+    """The corrected azimuths plausible at ``site``: a bearing in radians (0-6.3) fails."""
+    bearing = math.degrees(site.gun_bearing_rad)
+    return Bounds(
+        bearing - AZIMUTH_TURN_DEG,
+        bearing + AZIMUTH_TURN_DEG,
+        "deg",
+        f"within {AZIMUTH_TURN_DEG:g} deg of {site.name}'s gun bearing {bearing:g} deg true, "
+        "which the Earth's rotation turns by about mu; a bearing in radians fails",
+        True,
+        True,
+    )
+
+
 _COLUMNS = {
     "round": _Column("round_number", None),
     "error_km": _Column("apogee_error_m", _KM),
@@ -279,8 +312,11 @@ def _read_rows(path: Path, text: str, columns: tuple[str, ...]) -> list[tuple[in
     return rows
 
 
-def _parse_number(text: str, column: str, where: str) -> float | int:
-    """The value of one field in the file's unit, checked against :data:`PLAUSIBLE_RANGES`."""
+def _parse_number(
+    text: str, column: str, where: str, plausible: Bounds | None = None
+) -> float | int:
+    """The value of one field in the file's unit, checked against ``plausible`` (by default
+    the column's :data:`PLAUSIBLE_RANGES`)."""
     integer = column == "round"
     try:
         if not (_INTEGER if integer else _DECIMAL).fullmatch(text):
@@ -288,7 +324,7 @@ def _parse_number(text: str, column: str, where: str) -> float | int:
         value = int(text) if integer else float(text)
     except ValueError:  # also int()'s limit on the number of digits
         raise HarpDataError(f"{where}, column {column!r}: could not parse {text!r}") from None
-    plausible = PLAUSIBLE_RANGES[column]
+    plausible = plausible or PLAUSIBLE_RANGES[column]
     if not math.isfinite(value) or value not in plausible:
         raise HarpDataError(
             f"{where}, column {column!r}: {text!r} is outside the plausible range {plausible} "
@@ -322,10 +358,13 @@ def load_appendix(
     file_name, columns = _LAYOUTS[launch_site.name.lower()]
     packaged = path is None
     path = HARP_DATA_DIR / file_name if path is None else Path(path)
+    plausible = dict(PLAUSIBLE_RANGES, corrected_azimuth_deg=_azimuth_bounds(launch_site))
     rows, line_numbers = [], []
     for number, fields in _read_rows(path, _read_text(path, packaged, verify), columns):
         where = f"{path} line {number}"
-        rows.append([_to_si(_parse_number(t, c, where), c) for c, t in zip(columns, fields)])
+        rows.append(
+            [_to_si(_parse_number(t, c, where, plausible[c]), c) for c, t in zip(columns, fields)]
+        )
         line_numbers.append(number)
     frame = pd.DataFrame(rows, columns=[_COLUMNS[c].loaded_name for c in columns])
     frame["site"] = launch_site.name
