@@ -93,3 +93,56 @@ def test_a_flight_that_cannot_be_integrated_raises_instead_of_looping():
     poisoned = batch._replace(columns=np.full_like(batch.columns, np.nan))
     with pytest.raises(FloatingPointError, match="could not integrate launch 0"):
         threedof._fly(poisoned, 3000.0, 1e-9, record=False)
+
+
+KERNEL_MODULE = """
+from harp_analysis.compiled import jit
+
+
+@jit
+def polynomial(x):
+    total = x
+    for power in range(2, 12):
+        total += x**power / power
+    return total
+"""
+# compiles (or loads) the kernel once the test says go; prints how many signatures it compiled
+COMPILE_AT_GO = """
+import pathlib, sys, time
+import kernel_module
+ready, go = map(pathlib.Path, sys.argv[1:])
+ready.touch()
+while not go.exists():
+    time.sleep(0.005)
+assert kernel_module.polynomial(2.0) == kernel_module.polynomial.py_func(2.0)
+print(sum(kernel_module.polynomial.stats.cache_misses.values()))
+"""
+
+
+def test_processes_compiling_a_kernel_at_once_compile_it_once(tmp_path):
+    """Two processes compile one kernel into an empty cache at once (two notebooks opened after
+    an upgrade): both succeed, one compiles and the other loads what it saved, and a third
+    process loads it without compiling. Unguarded, both compile and both rewrite numba's index."""
+    import os
+    import subprocess
+    import sys
+    import time
+
+    (tmp_path / "kernel_module.py").write_text(KERNEL_MODULE)
+    go = tmp_path / "go"
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache"), "PYTHONPATH": str(tmp_path)}
+
+    def start(name: str) -> subprocess.Popen:
+        command = [sys.executable, "-c", COMPILE_AT_GO, str(tmp_path / name), str(go)]
+        return subprocess.Popen(command, env=env, stdout=subprocess.PIPE, text=True)
+
+    pair = [start("ready0"), start("ready1")]
+    while not all((tmp_path / f"ready{i}").exists() for i in range(2)):
+        assert all(process.poll() is None for process in pair), "a process failed to start"
+        time.sleep(0.005)
+    go.touch()  # both are imported and waiting: they reach the empty cache together
+    compiled = sorted(int(process.communicate(timeout=300)[0]) for process in pair)
+    assert [process.returncode for process in pair] == [0, 0]
+    assert compiled == [0, 1]
+    third = start("ready2")
+    assert int(third.communicate(timeout=300)[0]) == 0 and third.returncode == 0

@@ -7,7 +7,10 @@ package: the machine code is cached on disk in a folder named by a digest of the
 kernel's module reaches (numba itself would only notice a change in the file of the compiled
 function, not in a formula it calls from another module). Each engine with kernels has a
 ``warm_up()`` that compiles them ahead of use; ``make`` calls it whenever the sources change,
-which keeps compilation out of the notebooks' critical path.
+which keeps compilation out of the notebooks' critical path. Processes that compile the same
+kernel at once (two notebooks opened after an upgrade) take turns under a file lock per kernel,
+the later one loading what the first saved: unguarded, each compiles, and each reads, extends
+and rewrites numba's index of the kernel's cache files, which may lose the other's entries.
 
 The physics is written once. A formula meant for both worlds is decorated :func:`formula`: it
 stays a plain Python function that numpy runs on arrays, and compiled code inlines the same
@@ -32,7 +35,9 @@ from typing import Any, TypeVar
 
 import numba
 import numpy as np
+from filelock import FileLock
 from numba import types
+from numba.core.compiler_lock import global_compiler_lock
 from numba.extending import overload, register_jitable
 
 __all__ = ["jit", "formula", "select", "vector", "cache_folder"]
@@ -123,13 +128,36 @@ def jit(function: F | None = None, *, inline: bool = False) -> Any:
     if function is None:
         return lambda function: jit(function, inline=inline)
     config: Any = numba.config
-    folder = str(cache_folder(function.__module__))
+    folder = cache_folder(function.__module__)
     with _CACHE_DIR_LOCK:
-        previous, config.CACHE_DIR = config.CACHE_DIR, folder
+        previous, config.CACHE_DIR = config.CACHE_DIR, str(folder)
         try:
-            return numba.njit(cache=True, inline="always" if inline else "never")(function)
+            dispatcher: Any = numba.njit(cache=True, inline="always" if inline else "never")(
+                function
+            )
         finally:
             config.CACHE_DIR = previous
+    # numba compiles through this method at a first call, for a compiled caller and at warm-up
+    lock = folder / f"{function.__qualname__}-{function.__code__.co_firstlineno}.lock"
+    dispatcher.compile = _under_lock(dispatcher.compile, lock)
+    return dispatcher
+
+
+def _under_lock(compile: Callable, path: Path) -> Callable:
+    """``compile`` (a dispatcher's: load from the disk cache, else compile and save) run under
+    the file lock ``path``, so another process waits and then loads what this one saved. One
+    lock per kernel, taken caller before callee, cannot deadlock (calls form no cycle, and a
+    recursive kernel re-enters its own lock); numba's own lock is taken first, as it is in
+    ``compile``, so that threads take the two in one order."""
+    lock = FileLock(path)
+
+    def compile_under_lock(signature):
+        with global_compiler_lock:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            with lock:
+                return compile(signature)
+
+    return compile_under_lock
 
 
 def formula(function: F) -> F:
