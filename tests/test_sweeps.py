@@ -179,6 +179,25 @@ def test_bad_arguments_are_named():
         sweep(abs, [1], window=2.5)
 
 
+def test_an_endless_iterator_stops_at_max_items_by_name():
+    stream = CountingItems()
+    with pytest.raises(sweeps.SweepLengthError, match="more than max_items=50 .*endless"):
+        sweep(abs, stream, max_items=50, progress=False)
+    assert stream.pulled == 51  # the one too many, and nothing after it
+    with pytest.raises(sweeps.SweepLengthError, match="max_items=1000000"):
+        sweep(abs, itertools.count(), reduce=operator.add, initial=0, progress=False)
+    assert sweep(abs, iter(range(50)), max_items=50, progress=False) == list(range(50))
+
+
+def test_a_sized_sweep_beyond_max_items_is_refused_before_it_runs():
+    calls = []
+    with pytest.raises(sweeps.SweepLengthError, match="items has 11 items, more than max_items=10"):
+        sweep(calls.append, range(11), max_items=10)
+    assert calls == []
+    with pytest.raises(TypeError, match="max_items must be a whole number"):
+        sweep(abs, [1], max_items="10")
+
+
 # Chunks and the seeded sample
 
 

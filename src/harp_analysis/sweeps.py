@@ -31,12 +31,28 @@ from scipy.stats import qmc
 
 from .validation import check_choice
 
-__all__ = ["sweep", "interactive", "chunks", "sample_chunk", "SAMPLING_METHODS"]
+__all__ = [
+    "sweep",
+    "SweepLengthError",
+    "MAX_ITEMS",
+    "interactive",
+    "chunks",
+    "sample_chunk",
+    "SAMPLING_METHODS",
+]
 
 Item = TypeVar("Item")
 Result = TypeVar("Result")
 
 SAMPLING_METHODS = ("sobol", "random")
+
+#: Items a sweep takes by default at most: an endless iterator stops with
+#: :class:`SweepLengthError` instead of running until the machine's memory or patience ends.
+MAX_ITEMS = 10**6
+
+
+class SweepLengthError(ValueError):
+    """A sweep was given more items than its ``max_items`` (an endless iterator, or a typo)."""
 
 
 def interactive() -> bool:
@@ -88,6 +104,17 @@ def _progress_bar(progress: bool, total: int | None, description: str | None):
 
 
 _RAISED_BY = "raised by item {} of the sweep"  # the note on a function's exception
+
+
+def _bounded(items: Iterable, max_items: int) -> Generator:
+    """``items``, raising :class:`SweepLengthError` when one more than ``max_items`` comes."""
+    for index, item in enumerate(items):
+        if index == max_items:
+            raise SweepLengthError(
+                f"items gave more than max_items={max_items} items (an endless iterator?); "
+                f"pass a larger max_items to sweep more"
+            )
+        yield item
 
 
 def _in_process(function, items: Iterable, advance: Callable[[], Any]) -> Generator:
@@ -155,6 +182,7 @@ def sweep(
     reduce: Callable[[Any, Result], Any] | None = None,
     initial: Any = None,
     window: int | None = None,
+    max_items: int = MAX_ITEMS,
 ) -> Any:
     """``[function(item) for item in items]``, in the items' order; or, given ``reduce``, the
     fold ``state = reduce(state, result)`` over those results in the items' order, starting from
@@ -165,7 +193,9 @@ def sweep(
     of them are submitted and not yet folded (by default twice the cluster's threads). A tqdm
     bar labelled ``description`` counts the items done if ``progress`` and the session is
     :func:`interactive`; its total is known when ``items`` has a length. An exception raised by
-    ``function`` comes out of the sweep with a note naming the item's index."""
+    ``function`` comes out of the sweep with a note naming the item's index. More than
+    ``max_items`` items raise :class:`SweepLengthError` (before any runs, if ``items`` has a
+    length; when the one too many comes, if not)."""
     if not callable(function):
         raise TypeError(f"function must be callable; got {type(function).__name__}")
     if reduce is not None and not callable(reduce):
@@ -175,6 +205,13 @@ def sweep(
     if not isinstance(items, Iterable):
         raise TypeError(f"items must be iterable; got {type(items).__name__}")
     total = len(items) if isinstance(items, Sized) else None
+    max_items = _whole_number(max_items, "max_items", low=1)
+    if total is not None and total > max_items:
+        raise SweepLengthError(
+            f"items has {total} items, more than max_items={max_items}; pass a larger "
+            f"max_items to sweep them"
+        )
+    items = _bounded(items, max_items)
     if window is not None:
         window = _whole_number(window, "window", low=1)
     if client is not None:
