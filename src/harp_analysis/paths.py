@@ -14,13 +14,16 @@ module may rely on the current directory.
   raises a RuntimeError that says how to point at one.
 - ``FIGURES_DIR``: where :func:`harp_analysis.plotting.save_figure` writes. It is the folder
   ``HARP_ANALYSIS_FIGURES_DIR`` names, which ``make figures`` sets to the committed ``figures/``;
-  without it, a scratch folder in the system's temporary directory, so running or editing a
-  notebook never overwrites the committed figures unless asked to.
+  without it, the user's own scratch folder in the system's temporary directory
+  (``harp-analysis-figures-<uid>``, readable by its owner only), so running or editing a
+  notebook never overwrites the committed figures unless asked to, and users of one machine
+  never share it.
 """
 
 from __future__ import annotations
 
 import os
+import secrets
 import tempfile
 from importlib import resources
 from pathlib import Path
@@ -57,27 +60,39 @@ _IN_CHECKOUT = {
 
 def write_atomically(path: Path, write) -> Path:
     """Call ``write(temporary_path)`` and rename the result onto ``path``, so a reader never
-    sees a half-written file (a figure, the gallery, the ledger), even if the run is stopped."""
+    sees a half-written file (a figure, the gallery, the ledger), even if the run is stopped.
+    The file gets the mode of any file the user creates (0o666 less the umask), where
+    ``tempfile.mkstemp`` would leave it readable by its owner only."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(
-        dir=path.parent, prefix=f".{path.stem}-", suffix=path.suffix
-    )
-    os.close(handle)
+    temporary = path.parent / f".{path.stem}-{secrets.token_hex(8)}{path.suffix}"
+    os.close(os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
     try:
-        write(Path(temporary))
+        write(temporary)
         os.replace(temporary, path)
     except BaseException:
-        Path(temporary).unlink(missing_ok=True)
+        temporary.unlink(missing_ok=True)
         raise
     return path
+
+
+def _scratch_figures_dir() -> Path:
+    """This user's scratch folder for figures, created readable by its owner only; a folder of
+    that name that another user owns is refused (it could be read or replaced by them)."""
+    folder = Path(tempfile.gettempdir()) / f"harp-analysis-figures-{os.getuid()}"
+    folder.mkdir(mode=0o700, exist_ok=True)
+    if folder.lstat().st_uid != os.getuid() or folder.is_symlink():
+        raise PermissionError(
+            f"the scratch figure folder {folder} belongs to another user (or is a link); "
+            "remove it, or set HARP_ANALYSIS_FIGURES_DIR to a folder of your own"
+        )
+    return folder
 
 
 def __getattr__(name: str) -> Path:
     if name == "FIGURES_DIR":
         chosen = os.environ.get("HARP_ANALYSIS_FIGURES_DIR")
-        scratch = Path(tempfile.gettempdir()) / "harp-analysis-figures"
-        return Path(chosen).resolve() if chosen else scratch
+        return Path(chosen).resolve() if chosen else _scratch_figures_dir()
     if name not in _IN_CHECKOUT:
         raise AttributeError(f"module 'harp_analysis.paths' has no attribute {name!r}")
     if _ROOT is None:
