@@ -213,5 +213,15 @@ def test_unknown_atmosphere_is_named():
         atm.FitDefinition(50e3, 0.0, "log")
     with pytest.raises(ValueError, match="step_m"):
         atm.FitDefinition(5e3, 10e3, "log")
-    with pytest.raises(ValueError, match="decay_constant_per_m must be a single number"):
+    with pytest.raises(TypeError, match="decay_constant_per_m must be a real number"):
         atm.exponential_density(0.0, decay_constant_per_m=[1e-4, 2e-4])
+    with pytest.raises(TypeError, match="decay_constant_per_m must be a real number"):
+        atm.exponential_density(0.0, decay_constant_per_m="1e-4")
+    with pytest.raises(TypeError, match="altitude_m must be a real number"):
+        atm.standard_density("10000")
+    with pytest.raises(TypeError, match="altitude_m must be a real number"):
+        atm.get_atmosphere("us1976").density(["10000"])
+    with pytest.raises(ValueError, match="step_m = 1e-06 m makes more than 1e.07 points"):
+        atm.agreement_ceiling("two_segment", 0.1, step_m=1e-6)
+    with pytest.raises(ValueError, match="step_m = 0.001 m makes more than"):
+        atm.FitDefinition(50e3, 1e-3, "log")

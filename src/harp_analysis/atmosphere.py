@@ -30,7 +30,7 @@ from typing import Any, Literal
 import numpy as np
 
 from .compiled import formula, jit, select
-from .validation import check_choice, check_range, finite_array, finite_scalar
+from .validation import check_choice, check_range, real_array, real_number
 
 __all__ = [
     "DRY_AIR_GAS_CONSTANT_J_KG_K",
@@ -48,6 +48,7 @@ __all__ = [
     "three_layer_speed_of_sound",
     "exponential_density",
     "agreement_ceiling",
+    "MAX_GRID_POINTS",
     "FitDefinition",
     "ExponentialFit",
     "fit_exponential",
@@ -74,12 +75,29 @@ _STANDARD_TOP_M = 1_000_000.0
 _STANDARD_STEP_M = 25.0
 
 
+#: Points of a grid from the surface that a function of this module builds at most (about
+#: 80 MB of floats): a step far below the top would otherwise allocate until memory runs out.
+MAX_GRID_POINTS = 10**7
+
+
 def _positive(value, name: str, unit: str = "") -> float:
-    return check_range(finite_scalar(value, name), name, low=0.0, low_inclusive=False, unit=unit)
+    """A number > 0, strictly (a string such as "10000" is refused, not read)."""
+    return check_range(real_number(value, name), name, low=0.0, low_inclusive=False, unit=unit)
+
+
+def _grid_step(top_m: float, step_m: float, name: str = "step_m") -> float:
+    """``step_m``, refused naming ``name`` if a grid to ``top_m`` would exceed
+    :data:`MAX_GRID_POINTS`."""
+    if top_m / step_m > MAX_GRID_POINTS:
+        raise ValueError(
+            f"{name} = {step_m:g} m makes more than {MAX_GRID_POINTS:g} points up to "
+            f"{top_m:g} m; take a step of at least {top_m / MAX_GRID_POINTS:g} m"
+        )
+    return step_m
 
 
 def _altitudes(altitude_m, *, ceiling_m: float | None = None) -> np.ndarray:
-    altitude = finite_array(altitude_m, "altitude_m")
+    altitude = real_array(altitude_m, "altitude_m")
     return check_range(altitude, "altitude_m", low=0.0, high=ceiling_m, unit="m")
 
 
@@ -362,7 +380,9 @@ def agreement_ceiling(
     from the surface: the range over which the model "holds". ``top_m`` if it never departs."""
     density = get_atmosphere(atmosphere).density
     tolerance = _positive(relative_tolerance, "relative_tolerance")
-    grid = np.arange(0.0, _positive(top_m, "top_m", "m") + step_m, _positive(step_m, "step_m", "m"))
+    top_m = _positive(top_m, "top_m", "m")
+    step_m = _grid_step(top_m, _positive(step_m, "step_m", "m"))
+    grid = np.arange(0.0, top_m + step_m, step_m)
     outside = np.abs(density(grid) / standard_density(grid) - 1.0) > tolerance
     return float(grid[np.argmax(outside)] - step_m) if outside.any() else top_m
 
@@ -387,6 +407,7 @@ class FitDefinition:
     def __post_init__(self):
         _positive(self.top_m, "top_m", "m")
         check_range(_positive(self.step_m, "step_m", "m"), "step_m", high=self.top_m, unit="m")
+        _grid_step(self.top_m, self.step_m)
         check_choice(self.space, "space", ("linear", "log"))
 
     def altitudes_m(self) -> np.ndarray:
