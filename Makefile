@@ -45,15 +45,17 @@ test: lint $(KERNELS)
 	HARP_ANALYSIS_FIGURES_DIR="$$scratch" $(BIN)/python -m pytest -n 2 --dist loadgroup tests --nbmake notebooks && \
 	HARP_ANALYSIS_REGENERATED_FIGURES="$$scratch" $(BIN)/python -m pytest -q tests/test_figure_images.py
 
-# The explorer (notebooks/00_explorer.ipynb) as a web page, served by Voila on this machine only.
+# The explorer (notebooks/00_explorer.ipynb) as a web page, served by Voila on this machine only;
+# serve/voila.py culls idle kernels and caps the live ones.
 explore: $(KERNELS)
 	@echo "Explorer: http://127.0.0.1:8866/"
 	$(BIN)/voila notebooks/00_explorer.ipynb --no-browser --port=8866 --Voila.ip=127.0.0.1 \
-		--Voila.port_retries=0
+		--Voila.port_retries=0 --Voila.config_file_paths=serve
 
-# Only the explorer's browser test; a missing chromium or chromium-driver fails it, never skips.
+# Only the explorer's browser tests and its load test (about a minute, so not in `make test`);
+# a missing chromium or chromium-driver fails them, never skips.
 check-browser: $(KERNELS)
-	HARP_ANALYSIS_REQUIRE_BROWSER=1 $(BIN)/python -m pytest -q tests/browser
+	HARP_ANALYSIS_REQUIRE_BROWSER=1 HARP_ANALYSIS_EXPLORER_LOAD=1 $(BIN)/python -m pytest -q tests/browser
 
 benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_atmosphere.py
