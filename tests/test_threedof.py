@@ -36,6 +36,22 @@ def test_vacuum_flight_is_the_closed_form_kepler_orbit(vacuum_flight):
     assert attrs["apogee_time_s"] == pytest.approx(conic.time_to_apogee_s, rel=1e-6)
 
 
+@pytest.mark.parametrize("elevation_deg", [1e-4, 1e-3, 0.01, 0.1])
+def test_a_grazing_shot_lands_where_the_conic_meets_the_ground(elevation_deg):
+    # It rises micrometres to metres within its first step; a shot that starts on the ground
+    # must still be seen to fall back through it, not fly on underground (issue 25).
+    launch = Launch(BASELINE, 2157.0, elevation_deg, atmosphere="vacuum")
+    conic = kepler.ballistic_conic(2157.0, np.radians(elevation_deg))
+    flight = threedof.simulate_3dof(launch)
+    flights = threedof.fly_3dof([launch])
+    assert flight.attrs["impact"] and bool(flights.impact[0])
+    assert flight.altitude_m.min() > -1e-6
+    # positions are integrated to rtol 1e-9 of the Earth's radius (6 mm): a rise of 0.7 um at
+    # 1e-4 deg lands within centimetres
+    assert flight.attrs["range_m"] == pytest.approx(conic.ground_range_m, rel=1e-3, abs=0.03)
+    assert flights.range_m[0] == pytest.approx(conic.ground_range_m, rel=1e-3, abs=0.03)
+
+
 def test_vacuum_flight_conserves_energy_and_angular_momentum(vacuum_flight):
     # Rows are interpolated between steps of up to 20 s (quintic Hermite), hence 1e-8.
     radius = vacuum_flight.altitude_m + earth.RADIUS_M

@@ -197,6 +197,21 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
                 if fraction * hi > MIN_CUT_S and fraction < 1 - STRADDLE:
                     accept = False
                     h = hi * fraction * (1 - 2 * STRADDLE)
+        if math.isnan(impact_t) and end_sign > 0:
+            # A flight that starts on its end level and turns over within the step (a shot a
+            # hundredth of a degree above the horizon rises millimetres) would cross the level
+            # twice unseen: the step is cut at the apogee, from which the fall is a crossing.
+            above, after = event_value(ALTITUDE, end_m, y), event_value(ALTITUDE, end_m, y_new)
+            turns = (
+                event_value(RADIAL_VELOCITY, 0.0, y) > 0 >= event_value(RADIAL_VELOCITY, 0.0, y_new)
+            )
+            if above < _ON_LEVEL_M and after < 0 and turns:
+                fraction = crossing_fraction(
+                    RADIAL_VELOCITY, 0.0, t, t + hi, y, y_new, a, a_new, work
+                )
+                if fraction * hi > MIN_CUT_S:
+                    accept = False
+                    h = hi * fraction
         if not accept:
             continue
         t_new = t + hi
@@ -211,8 +226,12 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
                 hermite(t, t_new, y, y_new, a, a_new, apogee_t, apogee)
         if math.isnan(impact_t) and t_new > 1e-6:
             above, after = event_value(ALTITUDE, end_m, y), event_value(ALTITUDE, end_m, y_new)
-            if end_sign * above > 0 >= end_sign * after:
-                fraction = crossing_fraction(ALTITUDE, end_m, t, t_new, y, y_new, a, a_new, work)
+            if end_sign * above > -_ON_LEVEL_M and 0 >= end_sign * after:
+                fraction = (  # from on the level (a rise below the rounding) it lands at once
+                    crossing_fraction(ALTITUDE, end_m, t, t_new, y, y_new, a, a_new, work)
+                    if end_sign * above > 0
+                    else 0.0
+                )
                 impact_t = t + fraction * (t_new - t)
                 hermite(t, t_new, y, y_new, a, a_new, impact_t, end)
                 stopped = True
@@ -452,6 +471,9 @@ def _batch(launches) -> _Batch:
     return _Batch(codes, dynamics, breakpoints, site, columns)
 
 
+# A state this close to the level that ends the flight is on it: the altitude's rounding at the
+# Earth's radius is about 1e-9 m.
+_ON_LEVEL_M = 1e-6
 _STATE_FLOOR = np.array([earth.RADIUS_M] * 3 + [1e3] * 3)  # error scale floor: m, m/s
 _MAX_STEP_S = 20.0  # keeps the interpolated velocities between steps within ~1e-6 m/s
 
