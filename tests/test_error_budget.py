@@ -12,6 +12,7 @@ import math
 from dataclasses import replace
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from harp_analysis import earth, error_budget
@@ -138,3 +139,56 @@ def test_bad_uncertainties_are_named():
         error_budget.dispersion(BASELINE_45, (), progress=False)
     with pytest.raises(ValueError, match="launch_name"):
         error_budget.required_pointing_mrad("a howitzer")
+
+
+@pytest.mark.parametrize(
+    "samples, error, pattern",
+    [
+        (10**12, ValueError, r"samples must lie in \[16, 1.04858e\+06\]; got 1e\+12"),
+        (1, ValueError, r"samples must lie in \[16, "),
+        (15, ValueError, r"samples must lie in \[16, "),
+        (64.0, TypeError, "samples must be a whole number; got 64.0"),
+        ("64", TypeError, "samples must be a whole number; got '64'"),
+        (True, TypeError, "samples must be a whole number"),
+    ],
+)
+def test_sample_counts_are_bounded_by_name(samples, error, pattern):
+    """A count that would allocate until the machine stops, or give no spread at all, fails
+    at the call (before any flight)."""
+    with pytest.raises(error, match=pattern):
+        error_budget.dispersion(BASELINE_45, samples=samples, progress=False)
+
+
+def test_chunks_and_base_samples_are_bounded_by_name():
+    with pytest.raises(ValueError, match=r"chunk must lie in \[1, 16384\]"):
+        error_budget.dispersion(BASELINE_45, chunk=0, progress=False)
+    with pytest.raises(ValueError, match=r"base_samples must lie in \[8, 65536\]"):
+        error_budget.sensitivity_indices(BASELINE_45, base_samples=2**30, progress=False)
+    with pytest.raises(TypeError, match="launch must be a Launch; got str"):
+        error_budget.dispersion("HP", progress=False)
+    with pytest.raises(TypeError, match="launches must map names to Launch; got list"):
+        error_budget.budget_table([BASELINE_45], progress=False)
+
+
+def test_uncertainties_may_be_a_list():
+    """A list is as good as a tuple (it once failed as "unhashable type: 'list'")."""
+    elevation = [BY_NAME["elevation"]]
+    table = error_budget.one_at_a_time(BASELINE_45, elevation)
+    assert table.equals(error_budget.one_at_a_time(BASELINE_45, tuple(elevation)))
+
+
+def test_editing_a_shared_result_changes_no_later_result():
+    """The nominal flight is shared by every dispersion of the launch: an edit of the arrays
+    a caller got once turned the next apogee spread from 639 m into 104,505 m."""
+    spread = error_budget.dispersion(BASELINE_45, samples=16, chunk=16, progress=False)
+    outputs, _, axes = error_budget.nominal(BASELINE_45)
+    outputs[:] = 0.0
+    axes[:] = 1.0
+    error = error_budget.model_error(BASELINE_45)
+    error[:] = 0.0
+    table = error_budget.one_at_a_time(BASELINE_45)
+    table.iloc[:, :] = 0.0
+    again = error_budget.dispersion(BASELINE_45, samples=16, chunk=16, progress=False)
+    pd.testing.assert_series_equal(again, spread)
+    assert error_budget.model_error(BASELINE_45).min() > 0.0
+    assert (error_budget.one_at_a_time(BASELINE_45).abs().sum() > 0.0).all()

@@ -119,7 +119,7 @@ def test_residual_table_covers_every_model_site_and_row_set():
         ("site\tround\tvo_ft_s\nyuma\t4\n", "expected 3 fields"),
         ("site\tround\tspeed\n", "header"),
         ("site\tround\tvo_ft_s\nyuma\t4\tfast\n", "could not parse"),
-        ("site\tround\tvo_ft_s\nyuma\t4\t-5930\n", "positive"),
+        ("site\tround\tvo_ft_s\nyuma\t4\t-5930\n", "outside the plausible range"),
         ("site\tround\tvo_ft_s\nyuma\t4\t5930\nyuma\t4\t5930\n", "twice"),
     ],
 )

@@ -94,7 +94,6 @@ import sys
 import textwrap
 import time
 from collections import Counter
-from functools import cache
 from typing import Any
 
 import numpy as np
@@ -392,7 +391,7 @@ def mks_apogee_flops() -> int:
     return count_flops(mks_apogee)
 
 
-@cache
+@cached_copies
 def _mlt_costs() -> dict:
     """Own operations per call of each function MLT's segment loop runs, by code object."""
     m, complex_ = mlt, COMPLEX_WEIGHT

@@ -29,14 +29,17 @@ the one-at-a-time table scales linearly with each size, so a reader can rescale 
 from __future__ import annotations
 
 import math
+import numbers
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, replace
-from functools import cache, partial
+from functools import partial
 
 import numpy as np
 import pandas as pd
 from scipy.stats import norm
 
 from . import earth, eci, harp
+from .caching import cached_copies
 from .harp_data import FOOT_M
 from .launch import Launch, Launches, baseline_chapter_4, chapter_2
 from .projectiles import HP
@@ -57,6 +60,11 @@ __all__ = [
     "flown",
     "Moments",
     "dispersion",
+    "MAX_SAMPLES",
+    "MIN_SAMPLES",
+    "MAX_CHUNK",
+    "MAX_BASE_SAMPLES",
+    "MIN_BASE_SAMPLES",
     "one_at_a_time",
     "sensitivity_indices",
     "budget_table",
@@ -189,12 +197,12 @@ def flown(launch: Launch, uncertainties, deviations, at_time_s: float) -> np.nda
     return np.column_stack([whole.apogee_altitude_m, whole.end_position_m.T, position.T])
 
 
-@cache
+@cached_copies
 def nominal(launch: Launch) -> tuple[np.ndarray, float, np.ndarray]:
     """The nominal 3DOF flight's outputs (:func:`flown`), its apogee time, and the unit vectors
     along and across the line of fire at the impact point and along the flight at the apogee
     time (rows: downrange, crossrange, along-track)."""
-    apogee_time = float(fly_3dof(launch).apogee_time_s[0])
+    apogee_time = float(fly_3dof(_check_launch(launch)).apogee_time_s[0])
     outputs = flown(launch, (), np.zeros((1, 0)), apogee_time)[0]
     impact = outputs[1:4]
     up = impact / np.linalg.norm(impact)
@@ -227,13 +235,13 @@ def _scalar_outputs(launch: Launch, outputs: np.ndarray) -> np.ndarray:
 
 
 # --- the model error --------------------------------------------------------------------------
-@cache
+@cached_copies
 def model_error(launch: Launch) -> pd.Series:
     """The ECI MKS's error (m) for ``launch`` against the 3DOF: its apogee altitude, its impact
     point (distance between the two impact points on the ground) and its position at the
     3DOF's apogee time (the distance between the two positions at the same time, Chapter 5 C's
     measure), each from the nominal flight of :func:`nominal`."""
-    reference, apogee_time, _ = nominal(launch)
+    reference, apogee_time, _ = nominal(_check_launch(launch))
     correction = eci.correction_for_launch(launch)
     solution = eci.solution_for(correction, warn=False)
     impact_angle = float(solution.impact_angle)
@@ -304,7 +312,39 @@ def _chunk_moments(launch, uncertainties, at_time_s, seed, method, indices) -> M
     return Moments.of(np.column_stack([outputs - reference, _scalar_outputs(launch, outputs)]))
 
 
+#: Flights a dispersion draws at most and at least: above, the sample would take hours and
+#: its chunks' index gigabytes; below, the spread's own relative error, 1/sqrt(2 (n - 1)),
+#: exceeds 18 % (and one sample has no spread at all).
+MAX_SAMPLES = 2**20
+MIN_SAMPLES = 16
+#: Flights the 3DOF flies at once in one chunk at most (its arrays scale with it).
+MAX_CHUNK = 2**14
+#: Saltelli base samples at most (each costs d + 2 flights) and at least (SALib's estimators
+#: and their bootstrap half-widths are meaningless below).
+MAX_BASE_SAMPLES = 2**16
+MIN_BASE_SAMPLES = 8
+
+
+def _count(value, name: str, low: int, high: int) -> int:
+    """``value`` as a whole number within [low, high], or an error naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name} must be a whole number; got {value!r:.60}")
+    return int(check_range(float(value), name, low=low, high=high))
+
+
+def _check_launch(launch) -> Launch:
+    if not isinstance(launch, Launch):
+        raise TypeError(f"launch must be a Launch; got {type(launch).__name__}")
+    return launch
+
+
 def _check_uncertainties(uncertainties) -> tuple[Uncertainty, ...]:
+    if isinstance(uncertainties, Uncertainty | str | bytes) or not isinstance(
+        uncertainties, Iterable
+    ):
+        raise TypeError(
+            f"uncertainties must be a sequence of Uncertainty; got {type(uncertainties).__name__}"
+        )
     uncertainties = tuple(uncertainties)
     for position, u in enumerate(uncertainties):
         if not isinstance(u, Uncertainty):
@@ -328,8 +368,12 @@ def dispersion(
     (in chunks of ``chunk``, through :func:`~harp_analysis.sweeps.sweep`, on ``client``'s
     cluster if given): the root-mean-square distance of the apogee altitude, the impact point
     and the position at the nominal apogee time from the nominal flight's, and the standard
-    deviation of each of :data:`OUTPUTS` (``sd_<output>_m``)."""
+    deviation of each of :data:`OUTPUTS` (``sd_<output>_m``). ``samples`` lies within
+    [:data:`MIN_SAMPLES`, :data:`MAX_SAMPLES`], ``chunk`` within [1, :data:`MAX_CHUNK`]."""
+    launch = _check_launch(launch)
     uncertainties = _check_uncertainties(uncertainties)
+    samples = _count(samples, "samples", MIN_SAMPLES, MAX_SAMPLES)
+    chunk = _count(chunk, "chunk", 1, MAX_CHUNK)
     check_choice(method, "method", SAMPLING_METHODS)
     if not uncertainties:
         raise ValueError("uncertainties must name at least one input (an sd of 0 is allowed)")
@@ -341,6 +385,7 @@ def dispersion(
         progress=progress,
         description="error budget",
         reduce=_fold,
+        max_items=MAX_SAMPLES,
     )
     variance = np.diag(moments.covariance)
     offset = moments.mean[:7]  # of the flights from the nominal one
@@ -358,13 +403,16 @@ def dispersion(
     return pd.Series(result, name=moments.count)
 
 
-@cache
 def one_at_a_time(launch: Launch, uncertainties=CHAPTER_7B) -> pd.DataFrame:
     """Each input's own 1-sigma effect on :data:`OUTPUTS` (m, signed) and on the miss of the
     impact point and of the position at the nominal apogee time (m): central differences of
     +-1 sd, the others held nominal. Linear in each sd (checked by the tests): a reader may
     rescale a row by another size of its uncertainty."""
-    uncertainties = _check_uncertainties(uncertainties)
+    return _one_at_a_time(_check_launch(launch), _check_uncertainties(uncertainties))
+
+
+@cached_copies
+def _one_at_a_time(launch: Launch, uncertainties: tuple[Uncertainty, ...]) -> pd.DataFrame:
     _, apogee_time, _ = nominal(launch)
     d = len(uncertainties)
     deviations = np.vstack([np.eye(d), -np.eye(d)])
@@ -391,11 +439,14 @@ def sensitivity_indices(
     """First-order and total Sobol' indices of each input for each of :data:`OUTPUTS`
     (SALib's Saltelli design, ``base_samples`` x (d + 2) flights, and its estimators with
     their 95 % bootstrap half-widths): rows are inputs, columns ``<output>_S1``, ``_ST``,
-    ``_S1_conf``, ``_ST_conf``."""
+    ``_S1_conf``, ``_ST_conf``. ``base_samples`` lies within [:data:`MIN_BASE_SAMPLES`,
+    :data:`MAX_BASE_SAMPLES`]."""
     from SALib.analyze import sobol as analyze
     from SALib.sample import sobol as sample
 
+    launch = _check_launch(launch)
     uncertainties = _check_uncertainties(uncertainties)
+    base_samples = _count(base_samples, "base_samples", MIN_BASE_SAMPLES, MAX_BASE_SAMPLES)
     names = [u.name for u in uncertainties]
     problem = {"num_vars": len(names), "names": names, "bounds": [[0.0, 1.0]] * len(names)}
     unit = sample.sample(problem, base_samples, calc_second_order=False, seed=seed)
@@ -437,6 +488,8 @@ def budget_table(
     (:func:`model_error`), their ratio, and which dominates (or "comparable", within
     :data:`COMPARABLE_FACTOR`)."""
     launches = representative_launches() if launches is None else launches
+    if not isinstance(launches, Mapping):
+        raise TypeError(f"launches must map names to Launch; got {type(launches).__name__}")
     rows = []
     for name, launch in launches.items():
         spread = dispersion(
@@ -490,7 +543,7 @@ def median_required_pointing_mrad(output: str = "position") -> float:
     return float(np.median([required_pointing_mrad(name, output) for name in names]))
 
 
-@cache
+@cached_copies
 def representative_budget(samples: int = 4096, seed: int = 0) -> pd.DataFrame:
     """:func:`budget_table` of the representative launches (computed once per process)."""
     return budget_table(samples=samples, seed=seed, progress=False)

@@ -39,11 +39,12 @@ from scipy.optimize import brentq, minimize_scalar
 
 from . import eci
 from .atmosphere import SOUND_SQUARED_PER_KELVIN
+from .caching import cached_copies
 from .drag import ExponentialDragLaw
-from .harp_data import FOOT_M, load_appendix, load_muzzle_speeds
+from .harp_data import FOOT_M, MUZZLE_SPEEDS_FILE, HarpDataError, load_appendix, load_muzzle_speeds
 from .projectiles import Projectile
 from .sites import get_site
-from .validation import check_choice
+from .validation import check_choice, check_range, real_number
 
 __all__ = [
     "SPEED_STEP_FT_S",
@@ -82,6 +83,7 @@ PRINT_HALF_UNITS = {
     "apogee_error_m": 5.0,
     "delta_apogee_m": 5.0,
 }
+_SPEED_HALF_UNIT_M_S = 5.0  # the appendices print Vo to 0.01 km/s
 _TOLERANCE_KM = 0.02  # the Cd0 A interval of Appendix E's Error column: every round this close
 
 
@@ -136,7 +138,7 @@ def recover_muzzle_speeds(site: str) -> pd.DataFrame:
     return frame
 
 
-@cache
+@cached_copies
 def _appendix_rounds(site: str) -> pd.DataFrame:
     table = load_appendix(site)
     speeds = load_muzzle_speeds(site)
@@ -144,9 +146,19 @@ def _appendix_rounds(site: str) -> pd.DataFrame:
     missing = sorted(set(table.round_number) - set(exact))
     if missing:
         raise ValueError(f"no recovered muzzle speed for {site} rounds {missing}")
+    recovered = table.round_number.map(exact)
+    wrong = (recovered - table.muzzle_speed_m_s).abs() > _SPEED_HALF_UNIT_M_S * (1 + 1e-9)
+    if wrong.any():
+        row = table[wrong].iloc[0]
+        raise HarpDataError(
+            f"{MUZZLE_SPEEDS_FILE}: {site} round {row.round_number}'s "
+            f"{recovered[wrong].iloc[0] / FOOT_M:g} ft/s does not round to the "
+            f"{row.muzzle_speed_m_s / 1e3:.2f} km/s of the appendix's line {row.source_line} "
+            "(a speed in the wrong unit, or another round's?)"
+        )
     return table.assign(
         printed_muzzle_speed_m_s=table.muzzle_speed_m_s,
-        muzzle_speed_m_s=table.round_number.map(exact),
+        muzzle_speed_m_s=recovered,
     )
 
 
@@ -154,7 +166,7 @@ def appendix_rounds(site: str) -> pd.DataFrame:
     """The appendix of ``site`` as printed (every row, :func:`harp_data.load_appendix`), with
     ``muzzle_speed_m_s`` the recovered exact speed and ``printed_muzzle_speed_m_s`` the printed
     one. A copy: editing it changes nothing else."""
-    return _appendix_rounds(get_site(site).name.lower()).copy()
+    return _appendix_rounds(get_site(site).name.lower())
 
 
 def launch_corrections(
@@ -164,9 +176,19 @@ def launch_corrections(
     Cd0 A (or ``drag_area``)."""
     model = eci.get_model(model)
     rounds = appendix_rounds(site)
-    area = drag_area_m2(model.name) if drag_area is None else drag_area
+    area = _check_drag_area(drag_area)
+    area = drag_area_m2(model.name) if area is None else area
     return _site_launch(
         site, rounds.muzzle_speed_m_s.to_numpy(), rounds.mass_kg.to_numpy(), area, model
+    )
+
+
+def _check_drag_area(drag_area) -> float | None:
+    """``drag_area`` (Cd0 A, m^2) as a float > 0, or None (the model's own)."""
+    if drag_area is None:
+        return None
+    return check_range(
+        real_number(drag_area, "drag_area"), "drag_area", low=0.0, low_inclusive=False, unit="m^2"
     )
 
 
@@ -241,11 +263,14 @@ def fit_drag_area_to_errors() -> tuple[float, float, float]:
     )
 
 
-@cache
 def drag_area_m2(model: str = "dissertation") -> float:
     """The Martlet's Cd0 A (m^2) each model predicts with (module docstring): the dissertation
     model's from Appendix E's Error column, the others' from Appendix D's Beta column."""
-    model = eci.get_model(model).name
+    return _drag_area_m2(eci.get_model(model).name)
+
+
+@cache
+def _drag_area_m2(model: str) -> float:
     if model == "dissertation":
         return fit_drag_area_to_errors()[0]
     return beta_column_drag_area("barbados", model)[0]
@@ -299,7 +324,7 @@ def air_temperature_k(speed_of_sound_m_s: float) -> float:
 
 
 # --- apogees -------------------------------------------------------------------------------------
-@cache
+@cached_copies
 def _predicted(site, model, drag_area):
     table = appendix_rounds(site)
     launch = launch_corrections(site, model, drag_area)
@@ -326,9 +351,7 @@ def predicted_apogees(
     for Yuma the printed Error. ``model`` names one of :data:`eci.MODELS`; ``drag_area`` (Cd0 A,
     m^2) defaults to the model's own (:func:`drag_area_m2`). A copy."""
     name = eci.get_model(model).name
-    return _predicted(
-        get_site(site).name.lower(), name, None if drag_area is None else float(drag_area)
-    ).copy()
+    return _predicted(get_site(site).name.lower(), name, _check_drag_area(drag_area))
 
 
 def residual_statistic(

@@ -32,7 +32,6 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from functools import cache
 from typing import NamedTuple
 
 import numpy as np
@@ -40,6 +39,7 @@ import pandas as pd
 from scipy.stats import bootstrap
 
 from . import eci, harp
+from .caching import cached_copies
 from .harp_data import FOOT_M
 from .sites import get_site
 from .validation import check_choice, check_range, finite_array, finite_scalar
@@ -135,7 +135,7 @@ def _bootstrap(samples, statistic, confidence, resamples, seed) -> Interval:
 
 
 # --- the distinct rounds and their predictions ---------------------------------------------------
-@cache
+@cached_copies
 def _rounds(site: str) -> pd.DataFrame:
     table = harp.appendix_rounds(site)
     return table[~table.duplicate_of_earlier_row].reset_index(drop=True)

@@ -35,10 +35,10 @@ import importlib
 import math
 import re
 from dataclasses import dataclass, field
-from functools import cache
 from pathlib import Path
 
 from . import paths
+from .caching import cached_copies
 from .registry import load_toml_rows
 
 __all__ = [
@@ -190,7 +190,7 @@ def _claim(raw: dict, position: int, source: Path) -> Claim:
     return Claim(**raw)
 
 
-@cache
+@cached_copies
 def load_claims(path: Path | None = None) -> tuple[Claim, ...]:
     """Every claim of the ledger, in file order; ids must be unique."""
     path = Path(path) if path else paths.REGISTRY_DIR / "claims.toml"

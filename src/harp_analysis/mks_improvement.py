@@ -93,7 +93,7 @@ JUDGING: tuple[Launch, ...] = (
 )
 
 
-@cache
+@cached_copies
 def _flight(launch: Launch) -> pd.DataFrame:
     """The 3DOF's table of ``launch`` (0.25 s rows), computed once."""
     return simulate_3dof(launch, output_step_s=0.25)
