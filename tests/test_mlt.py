@@ -18,7 +18,7 @@ import pytest
 from harp_analysis import earth, kepler, mlt, sixdof
 from harp_analysis.atmosphere import get_atmosphere
 from harp_analysis.drag import M829
-from harp_analysis.launch import LP_CHAPTER_2, baseline_chapter_4, chapter_2
+from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, baseline_chapter_4, chapter_2
 from harp_analysis.projectiles import HP, LP
 from harp_analysis.trajectory import BASE_COLUMNS, METADATA_KEYS, TruncatedFlightWarning
 from harp_analysis.validation import ModelValidityWarning
@@ -315,6 +315,7 @@ def test_closed_form_segment_has_the_linear_theory_derivative():
         ({"segment_length_m": math.nan}, "segment_length_m"),
         ({"segment_length_m": 1e6}, "longer than the flight"),
         ({"segment_length_m": 1e7}, "longer than the flight"),
+        ({"segment_length_m": 1e-3}, "segment_length_m = 0.001 m would need"),  # hung
         ({"coefficients_at": "end"}, "coefficients_at"),
         ({"gravity": "flat"}, "gravity"),
         ({"density_altitude": "round"}, "density_altitude"),
@@ -389,6 +390,20 @@ def test_statically_unstable_projectile_is_flagged():
     # the flight after the warning is not physical and is not checked here.
     with pytest.warns(ModelValidityWarning, match="angle of attack"), np.errstate(over="ignore"):
         mlt.simulate_mlt(chapter_2(unstable))
+
+
+@pytest.mark.parametrize(
+    "launch", [HP_CHAPTER_2.but(elevation_deg=70.0), LP_CHAPTER_2.but(elevation_deg=80.0)]
+)
+def test_a_reentry_linear_theory_cannot_turn_is_warned_of(launch):
+    """Steep shots keep their attitude over the vacuum arc and come down backwards (an angle of
+    attack above 90 deg) where the air is too thin for the dense-air check; the 6DOF turns them
+    into the wind, MLT bounces off the thin air and climbs again (issue 25: HP's range 206 km
+    against the 6DOF's 173 km, LP's -6.4 km, unwarned)."""
+    with pytest.warns(ModelValidityWarning, match="climbs back"):
+        flight = mlt.simulate_mlt(launch)
+    turned = sixdof.simulate_6dof(launch)
+    assert abs(flight.attrs["range_m"] - turned.attrs["range_m"]) > 10e3  # what it warns of
 
 
 def test_reference_flight_is_within_linear_theory():

@@ -88,6 +88,11 @@ HP); (L1) then drops products that are no longer small. A flight whose angle of 
 beyond :data:`MAX_SMALL_ANGLE_DEG`, or whose epicyclic modes grow (a dynamically unstable
 projectile), while the dynamic pressure is above :data:`DENSE_AIR_PA` (where aerodynamic loads
 act on it) gets a ``ModelValidityWarning``, as do segments over :data:`MAX_SEGMENT_LENGTH_M`.
+The re-entry is checked too: above about 55 deg (HP) or 65 deg (LP) the body keeps its
+attitude through the vacuum arc and comes back down broadside or backwards (an angle of attack
+beyond 90 deg); linear theory cannot turn it into the wind as the 6DOF does, and its flight
+bounces off the thin air above 60 km and climbs again. A flight that climbs back more than
+:data:`REBOUND_M` after its apogee is warned of by name, wherever the air is.
 """
 
 from __future__ import annotations
@@ -131,6 +136,10 @@ __all__ = [
     "GRAVITY_MODELS",
     "MAX_SMALL_ANGLE_DEG",
     "DENSE_AIR_PA",
+    "REBOUND_M",
+    "MAX_SEGMENTS",
+    "MAX_PITCH_CHANGE_RAD",
+    "MIN_SEGMENTS",
     "SegmentCoefficients",
     "segment_coefficients",
     "epicyclic_roots",
@@ -147,6 +156,17 @@ GRAVITY_MODELS = ("central", "uniform")
 MAX_SMALL_ANGLE_DEG = 10.0
 MAX_SEGMENT_LENGTH_M = 10_000.0
 DENSE_AIR_PA = 1000.0
+#: A flight that climbs back this far after its apogee (far beyond the centimetres of the
+#: closed forms' kinks at segment ends) is flying outside linear theory (:func:`simulate_mlt`).
+REBOUND_M = 100.0
+#: The most segments a flight may need: about 8 s of linear solutions.
+MAX_SEGMENTS = 200_000
+#: Beyond this change of pitch within one segment (about 15 deg: a slow shot near its apex) the
+#: segment's frozen speed, coefficients and trapezoid rotation (L7-L8) no longer stand for it.
+MAX_PITCH_CHANGE_RAD = 0.25
+#: A flight of fewer segments is a few frozen linear solutions end to end (a slow, flat shot
+#: of a kilometre or two at the default 1 km).
+MIN_SEGMENTS = 4
 
 _R = earth.RADIUS_M
 _GM = earth.GM_M3_S2
@@ -485,6 +505,27 @@ def _where(segment: _Segment) -> str:
     return f"at {_altitude(segment.start) / 1e3:.1f} km ({pressure / 1e3:.1f} kPa dynamic pressure)"
 
 
+def _angle_of_attack_deg(state, model) -> float:
+    u_w, v_w, w_w = _apply(_rotation(state[4], state[5]), model.wind)
+    return math.degrees(math.atan2(math.hypot(state[7] - v_w, state[8] - w_w), state[6] - u_w))
+
+
+def _climb_problem(segment: _Segment, model, lowest_m: float) -> str | None:
+    """Why the flight climbs again after its apogee, or None: a body that only drag and small
+    angles act on cannot, so linear theory is then flying angles of attack far from small (a
+    projectile that kept its attitude through the vacuum arc re-enters broadside or backwards,
+    and only the 6DOF turns it into the wind)."""
+    altitude = _altitude(segment.start)
+    if altitude - lowest_m <= REBOUND_M:
+        return None
+    return (
+        f"after its apogee it comes down to {lowest_m / 1e3:.1f} km and climbs back to "
+        f"{altitude / 1e3:.1f} km, its angle of attack at "
+        f"{_angle_of_attack_deg(segment.start, model):.0f} deg: linear theory cannot turn a "
+        "projectile that re-enters the air that far from its nose"
+    )
+
+
 def _validity_problem(segment: _Segment, model) -> str | None:
     """Why ``segment`` is outside linear theory's validity in the air, or None: a growing
     epicyclic mode or an angle of attack beyond :data:`MAX_SMALL_ANGLE_DEG`, at its start,
@@ -500,8 +541,7 @@ def _validity_problem(segment: _Segment, model) -> str | None:
             "projectile is dynamically unstable there and its angle of attack cannot stay "
             "small"
         )
-    u_w, v_w, w_w = _apply(_rotation(state[4], state[5]), model.wind)
-    alpha = math.degrees(math.atan2(math.hypot(state[7] - v_w, state[8] - w_w), state[6] - u_w))
+    alpha = _angle_of_attack_deg(state, model)
     if alpha > MAX_SMALL_ANGLE_DEG:
         return (
             f"the angle of attack reaches {alpha:.1f} deg {_where(segment)}; linear theory assumes "
@@ -564,16 +604,28 @@ def simulate_mlt(
             stacklevel=2,
         )
 
+    needed = min(longest_m, speed * max_time) / length_m
+    if needed > MAX_SEGMENTS:
+        raise ValueError(
+            f"segment_length_m = {length_m:g} m would need up to {needed:.3g} segments for this "
+            f"flight (at most {MAX_SEGMENTS:,}); MLT updates every 500 m to 2 km"
+        )
+
     state = tuple(launch_state(launch).tolist())
     segments: list[_Segment] = []
     time, impact, problem = 0.0, False, None
     apogee: tuple | None = None
+    lowest_m = math.inf  # since the apogee
     while time < max_time:
         segment = _solve_segment(model, state, time, length, coefficients_at, aerodynamics, uniform)
         problem = problem or _validity_problem(segment, model)
+        if apogee is not None:
+            lowest_m = min(lowest_m, _altitude(segment.start))
+            problem = problem or _climb_problem(segment, model, lowest_m)
         duration = segment.duration_s(model)
         end = segment.at(model, length)
-        if _altitude(end) < 0.0:
+        lands = _altitude(end) < 0.0
+        if lands:
             if not segments:
                 raise ValueError(
                     f"segment_length_m = {length_m:g} m is longer than the flight: "
@@ -581,9 +633,13 @@ def simulate_mlt(
                 )
             s_hit = brentq(lambda s: _altitude(segment.at(model, s)), 0.0, length, xtol=1e-9)
             segment = segment._replace(length=s_hit)
-            segments.append(segment)
-            impact = True
-            break
+            end = segment.at(model, s_hit)
+        if abs(end[4] - segment.start[4]) > MAX_PITCH_CHANGE_RAD and not problem:
+            problem = (
+                f"its pitch turns {math.degrees(abs(end[4] - segment.start[4])):.0f} deg within "
+                f"one segment {_where(segment)}, whose speed and coefficients linear theory "
+                "freezes: shorten segment_length_m"
+            )
         if apogee is None and _radial_velocity(segment, end) < 0.0:
             # The positions are piecewise closed forms whose rotation T (eq L7) is fixed within a
             # segment and steps at its ends, where the direction of dr/dt turns by the segment's
@@ -592,13 +648,17 @@ def simulate_mlt(
                 brentq(
                     lambda s: _radial_velocity(segment, segment.at(model, s)),
                     0.0,
-                    length,
+                    segment.length,
                     xtol=1e-9,
                 )
                 if _radial_velocity(segment, segment.start) > 0.0
                 else 0.0
             )
             apogee = (time + s_top * model.d / segment.coefficients.speed, segment.at(model, s_top))
+        if lands:
+            segments.append(segment)
+            impact = True
+            break
         if time + duration > max_time:
             segments.append(
                 segment._replace(length=(max_time - time) * segment.coefficients.speed / model.d)
@@ -606,6 +666,12 @@ def simulate_mlt(
             break
         segments.append(segment)
         state, time = end, time + duration
+    if impact and len(segments) < MIN_SEGMENTS and not problem:
+        problem = (
+            f"the whole flight is {len(segments)} segments of {length_m:g} m, each frozen at "
+            f"one speed and set of coefficients: shorten segment_length_m to a few hundredths of "
+            "its range"
+        )
     if problem:
         warnings.warn(
             f"MLT flight of {projectile.name} is outside linear theory's validity: {problem}",
