@@ -37,6 +37,8 @@ def rotating(elevations=ELEVATIONS, bearings=BEARINGS) -> Launches:
         ({"elevation_deg": 0.0}, ValueError, "elevation_deg must lie in"),
         ({"speed_m_s": math.nan}, ValueError, "speed_m_s must be finite"),
         ({"spin_rad_s": math.inf}, ValueError, "spin_rad_s must be finite"),
+        ({"speed_m_s": 1e9}, ValueError, r"speed_m_s must lie in \(0, 100000\] m/s; got 1e\+09"),
+        ({"spin_rad_s": -1e300}, ValueError, r"spin_rad_s must lie in \[-100000, 100000\]"),
         ({"speed_m_s": "2157"}, TypeError, "speed_m_s must be a real number"),
         ({"bearing_deg": True}, TypeError, "bearing_deg must be a real number"),
         ({"bearing_deg": 360.0}, ValueError, r"bearing_deg must lie in \[0, 360\)"),

@@ -97,8 +97,11 @@ class Bounds:
 
 #: Every numeric field of a launch and where it must lie; the others are the projectile and
 #: the atmosphere's name.
+#: The upper bounds of speed and spin hold every physical launch with a wide margin (guns reach
+#: ~3 km/s, escape speed is 11.2 km/s and the engines warn beyond it; rifle bullets spin at
+#: ~2e4 rad/s): a value beyond is a typo or a wrong unit, which no engine should fly.
 BOUNDS = {
-    "speed_m_s": Bounds(low=0.0, low_inclusive=False, unit="m/s"),
+    "speed_m_s": Bounds(low=0.0, low_inclusive=False, high=1e5, unit="m/s"),
     "elevation_deg": Bounds(low=0.0, low_inclusive=False, high=90.0, unit="deg"),
     "bearing_deg": Bounds(low=0.0, high=360.0, high_inclusive=False, unit="deg"),
     "latitude_deg": Bounds(low=-90.0, high=90.0, unit="deg"),
@@ -106,7 +109,7 @@ BOUNDS = {
     "site_altitude_m": Bounds(low=-500.0, high=10_000.0, unit="m"),
     "cross_wind_m_s": Bounds(low=-100.0, high=100.0, unit="m/s"),
     "head_wind_m_s": Bounds(low=-100.0, high=100.0, unit="m/s"),
-    "spin_rad_s": Bounds(),
+    "spin_rad_s": Bounds(low=-1e5, high=1e5, unit="rad/s"),
     "rotation_rate_rad_s": Bounds(low=-1e-3, high=1e-3, unit="rad/s"),
     # A day's air within these keeps every model's temperature above 120 K.
     "density_change_fraction": Bounds(low=-0.5, high=0.5),
