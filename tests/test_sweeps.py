@@ -201,6 +201,16 @@ def test_a_sized_sweep_beyond_max_items_is_refused_before_it_runs():
 # Chunks and the seeded sample
 
 
+def test_chunks_and_samples_beyond_memory_are_refused_by_name():
+    with pytest.raises(sweeps.SweepLengthError, match="count = 1000000000000 in chunks of size"):
+        chunks(10**12, 1)
+    assert len(chunks(10**12, 10**6)) == 10**6
+    with pytest.raises(ValueError, match=r"indices \(1000000000000 points\) x dimensions \(2\)"):
+        sample_chunk(SEED, 2, range(10**12))
+    with pytest.raises(ValueError, match="dimensions must be <= 21201 for method 'sobol'"):
+        sample_chunk(SEED, 30_000, range(2))
+
+
 @given(count=st.integers(1, 10_000), size=st.integers(1, 12_000))
 def test_chunks_cover_the_samples_once_in_order(count, size):
     ranges = chunks(count, size)

@@ -35,6 +35,7 @@ __all__ = [
     "sweep",
     "SweepLengthError",
     "MAX_ITEMS",
+    "MAX_CHUNK_NUMBERS",
     "interactive",
     "chunks",
     "sample_chunk",
@@ -49,6 +50,10 @@ SAMPLING_METHODS = ("sobol", "random")
 #: Items a sweep takes by default at most: an endless iterator stops with
 #: :class:`SweepLengthError` instead of running until the machine's memory or patience ends.
 MAX_ITEMS = 10**6
+
+
+#: Numbers one chunk of a sample holds at most (800 MB of floats).
+MAX_CHUNK_NUMBERS = 10**8
 
 
 class SweepLengthError(ValueError):
@@ -237,6 +242,11 @@ def chunks(count: int, size: int) -> list[range]:
     a sweep over a large sample (a list, so a progress bar knows its length)."""
     count = _whole_number(count, "count", low=1)
     size = _whole_number(size, "size", low=1)
+    if -(-count // size) > MAX_ITEMS:
+        raise SweepLengthError(
+            f"count = {count} in chunks of size = {size} makes more than MAX_ITEMS = "
+            f"{MAX_ITEMS} chunks; take larger chunks"
+        )
     return [range(start, min(start + size, count)) for start in range(0, count, size)]
 
 
@@ -254,7 +264,16 @@ def sample_chunk(seed: int, dimensions: int, indices: range, method: str = "sobo
     if not isinstance(indices, range) or indices.step != 1 or indices.start < 0:
         raise ValueError(f"indices must be a range of sample numbers >= 0, step 1; got {indices!r}")
     check_choice(method, "method", SAMPLING_METHODS)
+    if len(indices) * dimensions > MAX_CHUNK_NUMBERS:
+        raise ValueError(
+            f"indices ({len(indices)} points) x dimensions ({dimensions}) exceed "
+            f"MAX_CHUNK_NUMBERS = {MAX_CHUNK_NUMBERS} numbers in one chunk; draw smaller chunks"
+        )
     if method == "sobol":
+        if dimensions > qmc.Sobol.MAXDIM:
+            raise ValueError(
+                f"dimensions must be <= {qmc.Sobol.MAXDIM} for method 'sobol'; got {dimensions}"
+            )
         engine = qmc.Sobol(dimensions, scramble=True, rng=seed)
         if indices.start:  # scipy's fast_forward cannot take 0 steps
             engine.fast_forward(indices.start)
