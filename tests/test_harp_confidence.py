@@ -310,6 +310,23 @@ def test_confidence_outside_the_unit_interval_is_refused(confidence):
         harp_confidence.bootstrap_interval(SYNTHETIC, confidence=confidence, resamples=9)
 
 
+@pytest.mark.parametrize(
+    "resamples, confidence, pattern",
+    [
+        (10**12, 0.95, r"resamples must lie in \[40, 100000\] for a 0.95 interval"),
+        (39, 0.95, r"resamples must lie in \[40, "),
+        (99, 0.99, r"resamples must lie in \[200, "),
+    ],
+)
+def test_resamples_are_bounded_for_a_meaningful_interval(resamples, confidence, pattern):
+    """Too few leave a tail of the interval without a resample; too many allocate until the
+    machine stops."""
+    with pytest.raises(ValueError, match=pattern):
+        harp_confidence.bootstrap_interval(SYNTHETIC, confidence=confidence, resamples=resamples)
+    with pytest.raises(TypeError, match="confidence must be a real number"):
+        harp_confidence.bootstrap_interval(SYNTHETIC, confidence="0.95")
+
+
 @pytest.mark.parametrize("resamples", [0, -5, 2.5, True, "99"])
 def test_resamples_must_be_a_whole_number(resamples):
     with pytest.raises(ValueError, match="resamples"):

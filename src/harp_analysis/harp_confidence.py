@@ -42,10 +42,11 @@ from . import eci, harp
 from .caching import cached_copies
 from .harp_data import FOOT_M
 from .sites import get_site
-from .validation import check_choice, check_range, finite_array, finite_scalar
+from .validation import check_choice, check_range, finite_array, finite_scalar, real_number
 
 __all__ = [
     "RESAMPLES",
+    "MAX_RESAMPLES",
     "SPEED_RECORD_STEP_M_S",
     "MASS_RECORD_STEP_KG",
     "Interval",
@@ -71,6 +72,8 @@ __all__ = [
 SITES = ("barbados", "yuma")
 #: Bootstrap resamples by default (scipy's default).
 RESAMPLES = 9999
+#: Bootstrap resamples at most: scipy holds them all at once (22 rounds x 8 bytes each).
+MAX_RESAMPLES = 10**5
 #: The muzzle-speed records' step: the recovered speeds are whole multiples of it (harp).
 SPEED_RECORD_STEP_M_S = harp.SPEED_STEP_FT_S * FOOT_M
 #: The appendices' masses are whole half pounds of 0.4536 kg (data/harp/README.md).
@@ -102,8 +105,8 @@ def uniform_quantisation_std(step: float) -> float:
 
 
 def _check_bootstrap(confidence, resamples, seed):
-    check_range(
-        finite_scalar(confidence, "confidence"),
+    confidence = check_range(
+        real_number(confidence, "confidence"),
         "confidence",
         low=0.0,
         high=1.0,
@@ -113,6 +116,12 @@ def _check_bootstrap(confidence, resamples, seed):
     for value, name, low in ((resamples, "resamples", 1), (seed, "seed", 0)):
         if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < low:
             raise ValueError(f"{name} must be a whole number >= {low}; got {value!r}")
+    fewest = math.ceil(2.0 / (1.0 - confidence))  # a resample in each tail
+    if not fewest <= resamples <= MAX_RESAMPLES:
+        raise ValueError(
+            f"resamples must lie in [{fewest}, {MAX_RESAMPLES}] for a {confidence:g} interval "
+            f"(each tail holds a resample; above, the resamples take gigabytes); got {resamples}"
+        )
 
 
 def _bootstrap(samples, statistic, confidence, resamples, seed) -> Interval:

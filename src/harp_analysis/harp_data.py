@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+import os
 import re
 from pathlib import Path
 from typing import NamedTuple
@@ -333,6 +334,12 @@ def _parse_number(
     return value
 
 
+def _path(path) -> Path:
+    if not isinstance(path, str | os.PathLike):
+        raise TypeError(f"path must be a file path (a str or a Path); got {type(path).__name__}")
+    return Path(path)
+
+
 def _to_si(value: float | int, column: str) -> float | int:
     scale = _COLUMNS[column].scale
     return value if scale is None else value * scale
@@ -357,7 +364,7 @@ def load_appendix(
     launch_site = get_site(site)
     file_name, columns = _LAYOUTS[launch_site.name.lower()]
     packaged = path is None
-    path = HARP_DATA_DIR / file_name if path is None else Path(path)
+    path = HARP_DATA_DIR / file_name if path is None else _path(path)
     plausible = dict(PLAUSIBLE_RANGES, corrected_azimuth_deg=_azimuth_bounds(launch_site))
     rows, line_numbers = [], []
     for number, fields in _read_rows(path, _read_text(path, packaged, verify), columns):
@@ -395,7 +402,7 @@ def load_muzzle_speeds(
     file must hold at least one row for ``site``."""
     launch_site = get_site(site)
     packaged = path is None
-    path = HARP_DATA_DIR / MUZZLE_SPEEDS_FILE if path is None else Path(path)
+    path = HARP_DATA_DIR / MUZZLE_SPEEDS_FILE if path is None else _path(path)
     rows = []
     for number, fields in _read_rows(path, _read_text(path, packaged, verify), _SPEED_COLUMNS):
         where = f"{path} line {number}"

@@ -20,7 +20,7 @@ from .mlt import simulate_mlt
 from .projectiles import get_projectile
 from .sixdof import simulate_6dof
 from .threedof import simulate_3dof
-from .validation import check_choice, check_range, finite_scalar
+from .validation import check_choice, check_range, real_number
 
 __all__ = [
     "reference_launch",
@@ -109,7 +109,7 @@ def launch_drag_to_gravity(
     g = (
         earth.surface_gravity_m_s2()
         if gravity_m_s2 is None
-        else finite_scalar(gravity_m_s2, "gravity_m_s2")
+        else _positive(gravity_m_s2, "gravity_m_s2")
     )
     drag = (
         0.5
@@ -121,6 +121,24 @@ def launch_drag_to_gravity(
     return float(drag / (p.mass_kg * g))
 
 
+def _positive(value, name: str) -> float:
+    return check_range(real_number(value, name), name, low=0.0, low_inclusive=False)
+
+
+def _altitude_km(altitude_km, flight: pd.DataFrame) -> float:
+    """``altitude_km`` from the ground to below ``flight``'s apogee (the interval's top), or an
+    error naming it."""
+    apogee_km = flight.attrs["apogee_altitude_m"] / 1e3
+    return check_range(
+        real_number(altitude_km, "altitude_km"),
+        "altitude_km",
+        low=0.0,
+        high=apogee_km,
+        high_inclusive=False,
+        unit="km",
+    )
+
+
 def ascent(flight: pd.DataFrame) -> pd.DataFrame:
     """The rows of ``flight`` up to its apogee."""
     return flight[flight.time_s <= flight.attrs["apogee_time_s"]]
@@ -130,6 +148,7 @@ def loss_share_below(flight: pd.DataFrame, altitude_km: float = 20.0) -> float:
     """Share of ``flight``'s ascent loss of specific angular momentum spent below
     ``altitude_km``."""
     rising = ascent(flight)
+    altitude_km = _altitude_km(altitude_km, flight)
     momentum = rising.specific_angular_momentum_m2_s.to_numpy()
     at = np.interp(altitude_km * 1e3, rising.altitude_m, momentum)
     return float((momentum[0] - at) / (momentum[0] - momentum[-1]))
@@ -138,7 +157,7 @@ def loss_share_below(flight: pd.DataFrame, altitude_km: float = 20.0) -> float:
 def drag_to_gravity_crossing_altitude_km(projectile: str, ratio: float = 1.0) -> float:
     """Altitude (km) where N = drag/gravity falls through ``ratio`` on the way up (Table 4.1's
     "altitude where drag = weight" is ``ratio = 1``)."""
-    ratio = check_range(finite_scalar(ratio, "ratio"), "ratio", low=0.0, low_inclusive=False)
+    ratio = _positive(ratio, "ratio")
     rising = ascent(reference_3dof(projectile, cross_wind_m_s=0.0))
     below = np.flatnonzero(rising.drag_to_gravity.to_numpy() < ratio)
     if below.size == 0 or below[0] == 0:
@@ -151,7 +170,8 @@ def drag_to_gravity_crossing_altitude_km(projectile: str, ratio: float = 1.0) ->
 def max_drag_to_gravity_above(projectile: str, altitude_km: float = 40.0) -> float:
     """Largest N anywhere along the flight above ``altitude_km`` (Chapter 2 A's 1 % claim)."""
     flight = reference_3dof(projectile)
-    return float(flight.drag_to_gravity[flight.altitude_m > altitude_km * 1e3].max())
+    above = flight.altitude_m > _altitude_km(altitude_km, flight) * 1e3
+    return float(flight.drag_to_gravity[above].max())
 
 
 def angular_momentum_loss_share_below(projectile: str, altitude_km: float = 20.0) -> float:
@@ -163,7 +183,8 @@ def angular_momentum_change_above(projectile: str, altitude_km: float = 40.0) ->
     """Relative change of specific angular momentum while the flight is above ``altitude_km``
     (the "approximately constant" stretch of Fig 2.10)."""
     flight = reference_3dof(projectile)
-    momentum = flight.specific_angular_momentum_m2_s[flight.altitude_m > altitude_km * 1e3]
+    above = flight.altitude_m > _altitude_km(altitude_km, flight) * 1e3
+    momentum = flight.specific_angular_momentum_m2_s[above]
     return float((momentum.max() - momentum.min()) / momentum.max())
 
 
