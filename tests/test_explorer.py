@@ -2,9 +2,11 @@
 show against the engines flown directly, and that bad input shows as a message.
 """
 
+import html
 import math
 import re
 import warnings
+from dataclasses import replace
 from functools import cache
 
 import pytest
@@ -46,8 +48,8 @@ def test_opens_on_chapter_2s_hp_with_both_engines_numbers(hp):
     assert numbers["MKS"][0] == pytest.approx(solution.apogee_altitude_m / 1e3, abs=5e-4)
     assert numbers["MKS"][3] == pytest.approx(solution.impact_time_s, abs=0.05)
     assert bytes(hp.plot.value[:4]) == b"\x89PNG"
-    messages = hp.messages.value
-    assert "cross_wind_m_s" in messages  # the MKS leaves Chapter 2's wind out
+    messages = html.unescape(hp.messages.value)
+    assert '"Cross wind (m/s)" = 5' in messages  # the MKS leaves Chapter 2's wind out
     assert "beta = 0.275" in messages  # above the text's 0.25
 
 
@@ -111,9 +113,9 @@ def test_6dof_and_mlt_come_on_request_and_refuse_what_they_cannot_fly():
 @pytest.mark.parametrize(
     "changes, says",
     [
-        ({"projectile": "custom", "mass_kg": 0.0}, "mass_kg"),
-        ({"projectile": "custom", "diameter_m": -0.1}, "diameter"),
-        ({"projectile": "custom", "drag_area_m2": -1e-3}, "Cd0 A must be zero or positive"),
+        ({"projectile": "custom", "mass_kg": 0.0}, "Mass (kg) must lie in (0, inf] kg; got 0"),
+        ({"projectile": "custom", "diameter_m": -0.1}, "Diameter (m) must lie in (0, inf]"),
+        ({"projectile": "custom", "drag_area_m2": -1e-3}, "Cd0 A (m^2) must lie in [0, inf]"),
         ({"speed_m_s": 300.0, "elevation_deg": 10.0}, "never leaves the sensible atmosphere"),
     ],
 )
@@ -238,3 +240,107 @@ def _fuzzed():
 def test_every_preset_is_a_launch():
     for name, setting in explorer.presets().items():
         assert isinstance(explorer.launch_for(setting), Launch), name
+
+
+def _snapped(slider, value):
+    """What a browser's slider shows of ``value`` and sends back: clamped to its range, on its
+    grid of steps from its minimum."""
+    held = min(max(value, slider.min), slider.max)
+    return slider.min + round((held - slider.min) / slider.step) * slider.step
+
+
+@pytest.mark.parametrize(
+    "name", ["HARP Barbados: round 181", "HARP Yuma: round 4", "Chapter 2 A: LP"]
+)
+def test_a_preset_flies_as_named_whatever_its_sliders_show(name):
+    """A browser's slider snaps the value it is given to its step and sends that back (44 of
+    the 50 presets were changed so: Barbados round 181 flew 1798 m/s, not 1798.32, and lost
+    its case and measured apogee). That echo must leave the launch as the preset names it."""
+    setting = explorer.preset(name)
+    view = explorer.Explorer(name)
+    for field, slider in view.sliders.items():
+        slider.value = _snapped(slider, getattr(setting, field))
+    assert view.preset.value == name
+    assert explorer.launch_for(view.settings) == explorer.launch_for(setting)
+    assert view.settings.speed_m_s == setting.speed_m_s
+    shown = _numbers(view.summary.value)
+    if setting.measured_apogee_m is not None:
+        assert shown["measured (HARP)"][0] == pytest.approx(setting.measured_apogee_m / 1e3)
+    flown, _ = explorer.fly(explorer.launch_for(setting))
+    assert shown["3DOF"][0] == pytest.approx(flown["3DOF"].apogee_m / 1e3, abs=5e-4)
+
+
+def test_a_slider_moved_a_step_sets_its_box_and_a_typed_value_beyond_it_is_kept():
+    view = explorer.Explorer("HARP Barbados: round 181")
+    slider, box = view.sliders["speed_m_s"], view.controls["speed_m_s"]
+    slider.value = _snapped(slider, box.value) + slider.step  # the reader's key press
+    assert box.value == 1799.0 and view.settings.speed_m_s == 1799.0
+    assert view.preset.value == "(your own)"
+    box.value = 4321.5  # beyond the slider's 4000 m/s, which then sits at its end
+    assert slider.value == slider.max
+    assert view.settings.speed_m_s == 4321.5
+
+
+def test_an_unknown_preset_is_named_with_the_known_ones():
+    with pytest.raises(ValueError, match=r"no preset is called 'Chapter 9'.*Chapter 2 A: HP"):
+        explorer.Explorer("Chapter 9")
+
+
+# Code names: a snake_case word such as theta_rad, cross_wind_m_s or density_change_fraction.
+CODE_NAME = re.compile(r"\b[a-z][a-z0-9]*_[a-z0-9_]+\b")
+
+
+@pytest.mark.parametrize(
+    "changes, label",
+    [
+        ({"elevation_deg": math.nan}, "Elevation (deg) must be finite; got nan"),
+        ({"elevation_deg": 95.0}, "Elevation (deg) must lie in (0, 90] deg"),
+        ({"speed_m_s": -5.0}, "Muzzle speed (m/s) must lie in (0, "),
+        ({"speed_m_s": math.inf}, "Muzzle speed (m/s) must be finite"),
+        ({"bearing_deg": math.nan}, "Bearing (deg T) must be finite"),
+        ({"latitude_deg": 91.0}, "Latitude (deg) must lie in"),
+        ({"cross_wind_m_s": 150.0}, "Cross wind (m/s) must lie in"),
+        ({"head_wind_m_s": math.nan}, "Head wind (m/s) must be finite"),
+        ({"density_change_percent": 60.0}, "Day's density (%) must lie in [-50, 50]; got 60"),
+        ({"temperature_change_k": 99.0}, "Day's temperature (K) must lie in"),
+        ({"spin_rad_s": math.inf}, "Spin (rad/s) must be finite"),
+        ({"projectile": "Martlet", "mass_kg": -1.0}, "Mass (kg) must lie in (0, inf] kg"),
+        ({"projectile": "custom", "drag_area_m2": math.nan}, "Cd0 A (m^2) must be finite"),
+    ],
+)
+def test_bad_input_names_the_control_by_its_label_never_by_a_code_name(changes, label):
+    with pytest.raises((ValueError, TypeError)) as error:
+        explorer.launch_for(replace(explorer.presets()["Chapter 2 A: LP"], **changes))
+    assert label in str(error.value)
+    assert not CODE_NAME.findall(str(error.value)), str(error.value)
+
+
+def test_messages_shown_name_fields_by_their_labels_never_by_code_names():
+    """The engines' warnings and refusals name the Launch's fields (launch.cross_wind_m_s,
+    the day's density as a fraction): the page gives the control's label and unit."""
+    view = explorer.Explorer("Chapter 2 A: LP")
+    for name, value, says in (
+        ("elevation_deg", math.nan, "This launch cannot be flown: Elevation (deg) must be"),
+        ("elevation_deg", 45.0, '"Cross wind (m/s)" = 5'),  # a warning, flown
+        ("density_change_percent", 3.0, None),
+    ):
+        view.controls[name].value = value
+        shown = html.unescape(view.messages.value)
+        assert says is None or says in shown, shown
+        assert not CODE_NAME.findall(shown), shown
+    view.rigid_body.click()  # Appendix B's rigid body leaves the day's air out
+    assert '"Day\'s density (%)" = 3' in html.unescape(view.messages.value)
+    view.controls["rotating"].value = True
+    view.rigid_body.click()  # and cannot fly a rotating Earth
+    shown = html.unescape(view.messages.value)
+    assert 'cannot fly "the Earth\'s rotation (rad/s)" = 7.27' in shown, shown
+    assert not CODE_NAME.findall(shown), shown
+
+
+def test_cd0_a_is_shown_to_its_meaningful_digits():
+    for name in ("Chapter 2 A: HP", "Chapter 4 B: baseline, 45 deg", "HARP Yuma: round 4"):
+        view = explorer.Explorer(name)
+        launch = explorer.launch_for(view.settings)
+        exact = launch.launch_drag_coefficient * launch.projectile.reference_area_m2
+        shown = view.controls["drag_area_m2"].value
+        assert shown == float(f"{exact:.4g}"), (name, shown, exact)

@@ -21,6 +21,7 @@ from __future__ import annotations
 import html
 import io
 import math
+import re
 import warnings
 from dataclasses import dataclass, replace
 from functools import cache
@@ -34,7 +35,7 @@ from matplotlib.figure import Figure
 from . import earth, harp, mks, mks_improved, mks_improvement, mlt, sixdof, threedof
 from .atmosphere import ATMOSPHERE_NAMES, SEA_LEVEL_DENSITY_KG_M3
 from .drag import ExponentialDragLaw
-from .launch import HP_CHAPTER_2, LP_CHAPTER_2, Launch, baseline_chapter_4
+from .launch import BOUNDS, HP_CHAPTER_2, LP_CHAPTER_2, Bounds, Launch, baseline_chapter_4
 from .plotting import HOUSE_STYLE, OKABE_ITO, style
 from .projectiles import BASELINE, HP, LP, Projectile
 from .sites import get_site
@@ -45,7 +46,9 @@ __all__ = [
     "ENGINES",
     "Settings",
     "Flown",
+    "LABELS",
     "presets",
+    "preset",
     "launch_for",
     "fly",
     "draw",
@@ -68,8 +71,69 @@ ATMOSPHERE_LABELS = {
     "exponential": "eq 3.11, k = 0.117/km",
     "vacuum": "vacuum",
 }
+#: Each control's label: what the reader sees, and what every message calls the field.
+LABELS = {
+    "projectile": "Projectile",
+    "speed_m_s": "Muzzle speed (m/s)",
+    "elevation_deg": "Elevation (deg)",
+    "bearing_deg": "Bearing (deg T)",
+    "latitude_deg": "Latitude (deg)",
+    "rotating": "The Earth turns",
+    "cross_wind_m_s": "Cross wind (m/s)",
+    "head_wind_m_s": "Head wind (m/s)",
+    "atmosphere": "Atmosphere",
+    "density_change_percent": "Day's density (%)",
+    "temperature_change_k": "Day's temperature (K)",
+    "spin_rad_s": "Spin (rad/s)",
+    "mass_kg": "Mass (kg)",
+    "diameter_m": "Diameter (m)",
+    "drag_area_m2": "Cd0 A (m^2)",
+    "improved_mks": "Also the improved MKS",
+}
+#: The fields a slider moves (min, max, step); the number box beside it holds the value.
+SLIDERS = {
+    "speed_m_s": (200.0, 4000.0, 1.0),
+    "elevation_deg": (1.0, 89.5, 0.5),
+    "bearing_deg": (0.0, 359.0, 1.0),
+    "latitude_deg": (-89.0, 89.0, 0.1),
+    "cross_wind_m_s": (-30.0, 30.0, 0.5),
+    "head_wind_m_s": (-30.0, 30.0, 0.5),
+    "density_change_percent": (-20.0, 20.0, 0.5),
+    "temperature_change_k": (-30.0, 30.0, 1.0),
+}
+#: The Launch's field behind each numeric control, and the control's unit over the field's.
+_LAUNCH_FIELDS = {
+    "speed_m_s": ("speed_m_s", 1.0),
+    "elevation_deg": ("elevation_deg", 1.0),
+    "latitude_deg": ("latitude_deg", 1.0),
+    "cross_wind_m_s": ("cross_wind_m_s", 1.0),
+    "head_wind_m_s": ("head_wind_m_s", 1.0),
+    "density_change_percent": ("density_change_fraction", 100.0),
+    "temperature_change_k": ("temperature_change_k", 1.0),
+    "spin_rad_s": ("spin_rad_s", 1.0),
+}
+#: Code names a message may carry (the engines name the Launch's fields) and the reader's
+#: words for them, with the factor from the field's unit to the control's.
+_READERS_WORDS = {
+    **{field: (LABELS[name], scale) for name, (field, scale) in _LAUNCH_FIELDS.items()},
+    "bearing_deg": (LABELS["bearing_deg"], 1.0),
+    "rotation_rate_rad_s": ("the Earth's rotation (rad/s)", 1.0),
+    "atmosphere": (LABELS["atmosphere"], 1.0),
+    "mass_kg": (LABELS["mass_kg"], 1.0),
+    "diameter_m": (LABELS["diameter_m"], 1.0),
+    "reference_area_m2": ("the reference area (m^2)", 1.0),
+    "launch_speed_m_s": (LABELS["speed_m_s"], 1.0),
+}
+_CODE_NAME = re.compile(
+    r"\b(?:launch\.|projectile\.)?(" + "|".join(_READERS_WORDS) + r")\b(?: = ([-+.\deEinfa]+))?"
+)
 _NAMED = {"HP": HP, "LP": LP, "baseline": BASELINE}
 _DRAW_DPI = 90
+#: A message wraps at the width of the views, long words and code included.
+_WRAPPING = ' style="overflow-wrap: anywhere; white-space: normal; margin: 0.3em 0"'
+#: Cd0 A is shown to four significant digits: the drag tables and the Martlet's fit hold no
+#: more.
+_DRAG_AREA_DIGITS = 4
 
 
 @dataclass(frozen=True)
@@ -154,6 +218,15 @@ def presets() -> dict[str, Settings]:
     return cases
 
 
+def preset(name: str) -> Settings:
+    """The preset called ``name`` (:func:`presets`), or a ValueError naming it and the known
+    ones."""
+    cases = presets()
+    if name not in cases:
+        raise ValueError(f"no preset is called {name!r}; the presets are: {', '.join(cases)}")
+    return cases[name]
+
+
 @cache
 def _typical_martlet_mass_kg() -> float:
     """The median mass of the distinct Barbados rounds (Appendix D)."""
@@ -161,36 +234,46 @@ def _typical_martlet_mass_kg() -> float:
     return float(rounds.mass_kg[~rounds.duplicate_of_earlier_row].median())
 
 
+def _positive(value, name: str, unit: str) -> float:
+    return Bounds(low=0.0, low_inclusive=False, unit=unit).number(value, LABELS[name])
+
+
 def _projectile(settings: Settings) -> Projectile:
     if settings.projectile in _NAMED:
         return _NAMED[settings.projectile]
+    if settings.projectile not in PROJECTILES:
+        raise ValueError(f"{LABELS['projectile']} must be one of {', '.join(PROJECTILES)}")
+    mass = _positive(settings.mass_kg, "mass_kg", "kg")
     if settings.projectile == "Martlet":
-        return harp.martlet(settings.mass_kg, settings.speed_m_s)
-    if settings.projectile == "custom":
-        area = math.pi * settings.diameter_m**2 / 4 if settings.diameter_m > 0 else math.nan
-        if not 0 < area < math.inf:
-            raise ValueError(
-                f"the diameter must be positive and finite; got {settings.diameter_m:g} m"
-            )
-        if not 0 <= settings.drag_area_m2 < math.inf:
-            raise ValueError(
-                f"Cd0 A must be zero or positive and finite; got {settings.drag_area_m2:g} m^2 "
-                "(a negative one would push the round along)"
-            )
-        return Projectile(
-            "custom",
-            settings.mass_kg,
-            area,
-            ExponentialDragLaw(0.0, 0.0, settings.drag_area_m2 / area),  # Cd0 A / A, constant
-            settings.speed_m_s,
-            "the explorer's custom projectile: constant Cd0 A",
-            diameter_m=settings.diameter_m,
-        )
-    raise ValueError(f"projectile must be one of {', '.join(PROJECTILES)}")
+        return harp.martlet(mass, settings.speed_m_s)
+    diameter = _positive(settings.diameter_m, "diameter_m", "m")
+    drag_area = Bounds(low=0.0, unit="m^2").number(settings.drag_area_m2, LABELS["drag_area_m2"])
+    area = math.pi * diameter**2 / 4
+    return Projectile(
+        "custom",
+        mass,
+        area,
+        ExponentialDragLaw(0.0, 0.0, drag_area / area),  # Cd0 A / A, constant
+        settings.speed_m_s,
+        "the explorer's custom projectile: constant Cd0 A",
+        diameter_m=diameter,
+    )
+
+
+def _check_controls(settings: Settings) -> None:
+    """Each numeric control inside its Launch field's bounds, in the control's own unit and
+    words (the day's density in percent, not the Launch's fraction)."""
+    for name, (field, scale) in _LAUNCH_FIELDS.items():
+        bounds = BOUNDS[field]
+        in_control_unit = replace(bounds, low=bounds.low * scale, high=bounds.high * scale)
+        in_control_unit.number(getattr(settings, name), LABELS[name])
+    Bounds().number(settings.bearing_deg, LABELS["bearing_deg"])  # any bearing, wrapped
 
 
 def launch_for(settings: Settings) -> Launch:
-    """The launch the controls describe; ValueError or TypeError naming what is wrong."""
+    """The launch the controls describe; ValueError or TypeError naming what is wrong by the
+    control's label."""
+    _check_controls(settings)
     return Launch(
         _projectile(settings),
         settings.speed_m_s,
@@ -205,6 +288,22 @@ def launch_for(settings: Settings) -> Launch:
         density_change_fraction=settings.density_change_percent / 100.0,
         temperature_change_k=settings.temperature_change_k,
     )
+
+
+def in_readers_words(text: str) -> str:
+    """``text`` with every code name of a field (``launch.cross_wind_m_s = 5``) replaced by
+    the control's label and the value in the control's unit ("Cross wind (m/s)" = 5)."""
+
+    def words(match: re.Match) -> str:
+        label, scale = _READERS_WORDS[match.group(1)]
+        if match.group(2) is None:
+            return f'"{label}"'
+        try:
+            return f'"{label}" = {float(match.group(2)) * scale:g}'
+        except ValueError:
+            return f'"{label}" = {match.group(2)}'
+
+    return _CODE_NAME.sub(words, text)
 
 
 # --- flying ---------------------------------------------------------------------------------
@@ -287,8 +386,9 @@ _RIGID_BODY = {
 
 def fly(launch: Launch, engines=("3DOF", "MKS")) -> tuple[dict[str, Flown], list[str]]:
     """Each of ``engines`` (:data:`ENGINES`; the 3DOF always, as the reference) flown on
-    ``launch``, and the messages for the reader: every validity warning the engines raise,
-    whether the flight leaves the sensible atmosphere, and why an engine could not fly it."""
+    ``launch``, and the messages for the reader (in the controls' words): every validity
+    warning the engines raise, whether the flight leaves the sensible atmosphere, and why an
+    engine could not fly it."""
     flown: dict[str, Flown] = {}
     messages: list[str] = []
     with warnings.catch_warnings(record=True) as caught:
@@ -306,9 +406,9 @@ def fly(launch: Launch, engines=("3DOF", "MKS")) -> tuple[dict[str, Flown], list
                 else:
                     flown[engine] = _mks(engine, launch, three)
             except (ValueError, TypeError, ArithmeticError) as error:
-                messages.append(f"The {engine} cannot fly this launch: {error}")
+                messages.append(in_readers_words(f"The {engine} cannot fly this launch: {error}"))
     for warning in caught:  # the models' own warnings, not numpy's arithmetic on the way
-        text = str(warning.message)
+        text = in_readers_words(str(warning.message))
         if not issubclass(warning.category, RuntimeWarning) and text not in messages:
             messages.append(text)
     beta = flown["MKS"].beta if "MKS" in flown else None
@@ -419,9 +519,9 @@ def summary_html(flown: dict[str, Flown], measured_apogee_m: float | None = None
 def messages_html(messages: list[str]) -> str:
     """The messages as an HTML list (escaped), or a note that there are none."""
     if not messages:
-        return "<p>No validity warnings.</p>"
+        return f"<p{_WRAPPING}>No validity warnings.</p>"
     items = "".join(f"<li>{html.escape(text)}</li>" for text in messages)
-    return f"<ul>{items}</ul>"
+    return f"<ul{_WRAPPING}>{items}</ul>"
 
 
 # --- the widgets ----------------------------------------------------------------------------
@@ -429,88 +529,122 @@ class Explorer:
     """The explorer's widgets (``.widget``), their controls by the :class:`Settings` field they
     set (``.controls``), and its views: ``.plot`` (an Image), ``.summary`` and ``.messages``
     (HTML). Every control flies the launch again; ``.rigid_body`` (a button) adds the 6DOF and
-    MLT to the current launch. CSS classes ``harp-*`` name the parts for a browser."""
+    MLT to the current launch. CSS classes ``harp-*`` name the parts for a browser.
 
-    def __init__(self, preset: str = "Chapter 2 A: HP"):
+    The controls hold values exactly: each field of :data:`SLIDERS` is a number box
+    (``.controls``), with a slider beside it (``.sliders``) that moves it by its step. A
+    browser's slider shows the box's value snapped to its step and sends that back; such an
+    echo (within half a step of the box, after the slider's range clamps it) is not the
+    reader's move and changes nothing, so a preset flies as named until the reader edits."""
+
+    def __init__(self, preset_name: str = "Chapter 2 A: HP"):
         import ipywidgets as w
 
         self._presets = presets()
+        self.settings = preset(preset_name)
         self._holding = False
         self._rigid_body = False
-        self.settings = self._presets[preset]
         self.last_flown: dict[str, Flown] = {}
-        layout = dict(style={"description_width": "150px"}, layout=w.Layout(width="380px"))
-        slider = dict(continuous_update=True, **layout)
+        style = {"description_width": "150px"}
+        layout = dict(style=style, layout=w.Layout(width="380px"))
         self.preset = w.Dropdown(
             options=["(your own)", *self._presets],
-            value=preset,
-            description="dissertation case",
+            value=preset_name,
+            description="Dissertation case",
             **layout,
         )
+        self.sliders = {
+            name: w.FloatSlider(
+                min=low,
+                max=high,
+                step=step,
+                description=LABELS[name],
+                readout=False,
+                continuous_update=True,
+                style=style,
+                layout=w.Layout(width="290px"),
+            )
+            for name, (low, high, step) in SLIDERS.items()
+        }
+        boxes = {name: w.FloatText(layout=w.Layout(width="86px")) for name in SLIDERS}
         self.controls = {
-            "projectile": w.Dropdown(options=PROJECTILES, description="projectile", **layout),
-            "speed_m_s": w.FloatSlider(
-                min=200, max=4000, step=1, description="muzzle speed (m/s)", **slider
+            "projectile": w.Dropdown(
+                options=PROJECTILES, description=LABELS["projectile"], **layout
             ),
-            "elevation_deg": w.FloatSlider(
-                min=1, max=89.5, step=0.5, description="elevation (deg)", **slider
-            ),
-            "bearing_deg": w.FloatSlider(
-                min=0, max=359, step=1, description="bearing (deg T)", **slider
-            ),
-            "latitude_deg": w.FloatSlider(
-                min=-89, max=89, step=0.1, description="latitude (deg)", **slider
-            ),
-            "rotating": w.Checkbox(description="the Earth turns", **layout),
-            "cross_wind_m_s": w.FloatSlider(
-                min=-30, max=30, step=0.5, description="cross wind (m/s)", **slider
-            ),
-            "head_wind_m_s": w.FloatSlider(
-                min=-30, max=30, step=0.5, description="head wind (m/s)", **slider
-            ),
+            "speed_m_s": boxes["speed_m_s"],
+            "elevation_deg": boxes["elevation_deg"],
+            "bearing_deg": boxes["bearing_deg"],
+            "latitude_deg": boxes["latitude_deg"],
+            "rotating": w.Checkbox(description=LABELS["rotating"], **layout),
+            "cross_wind_m_s": boxes["cross_wind_m_s"],
+            "head_wind_m_s": boxes["head_wind_m_s"],
             "atmosphere": w.Dropdown(
                 options=[(ATMOSPHERE_LABELS.get(name, name), name) for name in ATMOSPHERE_NAMES],
-                description="atmosphere",
+                description=LABELS["atmosphere"],
                 **layout,
             ),
-            "density_change_percent": w.FloatSlider(
-                min=-20, max=20, step=0.5, description="day's density (%)", **slider
-            ),
-            "temperature_change_k": w.FloatSlider(
-                min=-30, max=30, step=1, description="day's temperature (K)", **slider
-            ),
-            "spin_rad_s": w.FloatText(description="spin (rad/s)", **layout),
-            "mass_kg": w.FloatText(description="mass (kg)", **layout),
-            "diameter_m": w.FloatText(description="diameter (m)", **layout),
-            "drag_area_m2": w.FloatText(description="Cd0 A (m^2)", **layout),
-            "improved_mks": w.Checkbox(description="also the improved MKS", **layout),
+            "density_change_percent": boxes["density_change_percent"],
+            "temperature_change_k": boxes["temperature_change_k"],
+            **{
+                name: w.FloatText(description=LABELS[name], **layout)
+                for name in ("spin_rad_s", "mass_kg", "diameter_m", "drag_area_m2")
+            },
+            "improved_mks": w.Checkbox(description=LABELS["improved_mks"], **layout),
         }
         self.rigid_body = w.Button(
-            description="fly the 6DOF and MLT too", layout=w.Layout(width="380px")
+            description="Fly the 6DOF and MLT too", layout=w.Layout(width="380px")
         )
-        self.plot = w.Image(format="png")
-        self.summary = w.HTML()
-        self.messages = w.HTML()
+        self.plot = w.Image(format="png", layout=w.Layout(max_width="100%"))
+        self.summary = w.HTML(layout=w.Layout(width="100%"))
+        self.messages = w.HTML(layout=w.Layout(width="100%"))
         for widget, name in (
             (self.preset, "preset"),
-            (self.controls["elevation_deg"], "elevation"),
             (self.plot, "plot"),
             (self.summary, "summary"),
             (self.messages, "messages"),
             (self.rigid_body, "rigid-body"),
         ):
             widget.add_class(f"harp-{name}")
+        for name, control in self.controls.items():
+            control.add_class(f"harp-{name}")
+        for name, slider in self.sliders.items():
+            slider.add_class(f"harp-{name}-slider")
+            self._couple(slider, self.controls[name])
         self._show(self.settings)
         for name, control in self.controls.items():
             # the improved MKS is another view of the same launch, not another launch
             control.observe(self.update if name == "improved_mks" else self._changed, names="value")
         self.preset.observe(self._preset_chosen, names="value")
         self.rigid_body.on_click(self._fly_rigid_body)
-        controls = w.VBox([self.preset, *self.controls.values(), self.rigid_body])
-        views = w.VBox([self.plot, self.summary, self.messages])
-        self.widget = w.HBox([controls, views])
+        rows = [
+            w.HBox([self.sliders[name], control]) if name in self.sliders else control
+            for name, control in self.controls.items()
+        ]
+        controls = w.VBox([self.preset, *rows, self.rigid_body])
+        views = w.VBox(
+            [self.plot, self.summary, self.messages],
+            layout=w.Layout(flex="1 1 420px", max_width="820px", min_width="0"),
+        )
+        self.widget = w.HBox([controls, views], layout=w.Layout(flex_flow="row wrap"))
         self.widget.add_class("harp-explorer")
         self.update()
+
+    @staticmethod
+    def _couple(slider, box) -> None:
+        """The slider follows the box; a move of the slider (not its echo) sets the box."""
+
+        def moved(change) -> None:
+            held = min(max(box.value, slider.min), slider.max)
+            if math.isfinite(held) and abs(change["new"] - held) <= slider.step / 2:
+                return  # the box's value, snapped to the slider's step: no move
+            box.value = change["new"]
+
+        def typed(change) -> None:
+            if math.isfinite(change["new"]):
+                slider.value = change["new"]  # clamped to the slider's range
+
+        slider.observe(moved, names="value")
+        box.observe(typed, names="value")
 
     # what the controls show and hold
     def _show(self, settings: Settings) -> None:
@@ -529,20 +663,20 @@ class Explorer:
     def _describe(self, launch: Launch) -> None:
         """Fill the fields a named projectile fixes (shown greyed out) with its values: mass,
         diameter (the reference area's; 0 for the Martlet, whose the text does not give) and
-        Cd0 A at the launch Mach number. A custom projectile starts from them."""
+        Cd0 A at the launch Mach number, to its meaningful digits. A custom projectile starts
+        from them."""
         if self.settings.projectile == "custom":
             return
         projectile = launch.projectile
         diameter = projectile.diameter_m or math.sqrt(4 * projectile.reference_area_m2 / math.pi)
+        drag_area = launch.launch_drag_coefficient * projectile.reference_area_m2
         self._holding = True
         try:
             self.controls["mass_kg"].value = projectile.mass_kg
             self.controls["diameter_m"].value = (
                 0.0 if self.settings.projectile == "Martlet" else diameter
             )
-            self.controls["drag_area_m2"].value = (
-                launch.launch_drag_coefficient * projectile.reference_area_m2
-            )
+            self.controls["drag_area_m2"].value = float(f"{drag_area:.{_DRAG_AREA_DIGITS}g}")
         finally:
             self._holding = False
 
