@@ -21,7 +21,7 @@ from .mks_error import position_errors
 from .projectiles import BASELINE, get_projectile
 from .scenarios import fly_3dof
 from .threedof import simulate_3dof
-from .validation import ModelValidityWarning
+from .validation import ModelValidityWarning, check_choice
 
 __all__ = [
     "BASELINE_ELEVATIONS_DEG",
@@ -141,11 +141,17 @@ VARIANTS: dict[str, dict[str, Any]] = {
 }
 
 
+def _variant(variant: str) -> dict:
+    """The changes of Chapter 4 C's variant ``variant`` (one of :data:`VARIANTS`)."""
+    return VARIANTS[check_choice(variant, "variant", VARIANTS)]
+
+
 def error_ratio(variant: str, elevation_deg: float | None = None) -> float:
     """Error at apogee of a Chapter 4 C variant over the standard case's (baseline), at one
     elevation or, by default, summed over :data:`BASELINE_ELEVATIONS_DEG`."""
     elevations = BASELINE_ELEVATIONS_DEG if elevation_deg is None else (elevation_deg,)
-    return sum(error_at_apogee_km("baseline", e, **VARIANTS[variant]) for e in elevations) / sum(
+    changes = _variant(variant)
+    return sum(error_at_apogee_km("baseline", e, **changes) for e in elevations) / sum(
         error_at_apogee_km("baseline", e) for e in elevations
     )
 
@@ -154,7 +160,7 @@ def max_error_change_km(variant: str) -> float:
     """Largest change (km) of the error at apogee that a variant causes, over the elevations."""
     return max(
         abs(
-            error_at_apogee_km("baseline", e, **VARIANTS[variant])
+            error_at_apogee_km("baseline", e, **_variant(variant))
             - error_at_apogee_km("baseline", e)
         )
         for e in BASELINE_ELEVATIONS_DEG
@@ -441,7 +447,7 @@ def straighter_ratio(variant: str = "speed_plus_20pct", altitude_km: float = 20.
     """The variant's turn of the flight path below ``altitude_km`` over the standard case's
     (:func:`flight_path_turn_deg`), the largest over Chapter 4's elevations (Fig 4.17's
     "much straighter trajectory in the lower atmosphere" wherever it is weakest)."""
-    changes = {k: v for k, v in VARIANTS[variant].items() if k != "momentum_from_apogee"}
+    changes = {k: v for k, v in _variant(variant).items() if k != "momentum_from_apogee"}
     return max(
         flight_path_turn_deg(e, altitude_km, **changes) / flight_path_turn_deg(e, altitude_km)
         for e in BASELINE_ELEVATIONS_DEG

@@ -47,7 +47,7 @@ from .sites import BARBADOS
 from .sweeps import SAMPLING_METHODS, chunks, sample_chunk, sweep
 from .threedof import fly_3dof
 from .trajectory import launch_frame, rotate_about_axis
-from .validation import check_choice, check_range, finite_scalar
+from .validation import check_choice, check_range, real_number
 
 __all__ = [
     "Uncertainty",
@@ -349,7 +349,8 @@ def _check_uncertainties(uncertainties) -> tuple[Uncertainty, ...]:
     for position, u in enumerate(uncertainties):
         if not isinstance(u, Uncertainty):
             raise TypeError(f"uncertainties[{position}] must be an Uncertainty; got {u!r:.60}")
-        check_range(finite_scalar(u.sd, f"uncertainties[{position}].sd"), "sd", low=0.0)
+        name = f"uncertainties[{position}].sd"
+        check_range(real_number(u.sd, name), name, low=0.0)
     return uncertainties
 
 

@@ -508,6 +508,12 @@ def splash_error(
     MKS's (:func:`harp_rounds.splash_range_km`), km, or as a share of the observed range."""
     from .harp_rounds import TEXT_SPLASH_RANGES_KM, splash_range_km
 
-    observed = TEXT_SPLASH_RANGES_KM[round_number]["observed splash"]
+    try:
+        observed = TEXT_SPLASH_RANGES_KM[round_number]["observed splash"]
+    except (KeyError, TypeError):  # TypeError: an unhashable round_number
+        raise ValueError(
+            f"round_number {round_number!r} has no observed splash in the text; "
+            f"it gives one for rounds {sorted(TEXT_SPLASH_RANGES_KM)}"
+        ) from None
     error = observed - splash_range_km("barbados", round_number, model)
     return error / observed if relative else error

@@ -42,7 +42,7 @@ from . import eci, harp
 from .caching import cached_copies
 from .harp_data import FOOT_M
 from .sites import get_site
-from .validation import check_choice, check_range, finite_array, finite_scalar, real_number
+from .validation import check_choice, check_range, real_array, real_number
 
 __all__ = [
     "RESAMPLES",
@@ -101,7 +101,7 @@ class Interval(NamedTuple):
 def uniform_quantisation_std(step: float) -> float:
     """Standard deviation of a value known only to the nearest multiple of ``step``: uniform
     over +- step / 2, sd = step / sqrt(12)."""
-    return check_range(finite_scalar(step, "step"), "step", low=0.0) / math.sqrt(12.0)
+    return check_range(real_number(step, "step"), "step", low=0.0) / math.sqrt(12.0)
 
 
 def _check_bootstrap(confidence, resamples, seed):
@@ -194,7 +194,7 @@ def bootstrap_interval(
     """BCa bootstrap interval of the ``"mean"`` or sample standard deviation (``"std"``,
     ddof = 1) of a 1-D ``sample``, in its unit."""
     check_choice(statistic, "statistic", _STATISTICS)
-    values = finite_array(sample, "sample")
+    values = real_array(sample, "sample")
     if values.ndim != 1 or values.size < 3:
         raise ValueError(f"sample must be 1-D with at least 3 values; got shape {values.shape}")
     return _bootstrap((values,), _STATISTICS[statistic], confidence, resamples, seed)
@@ -280,7 +280,7 @@ def apogee_sensitivities(
 
 
 def _positive(value, name):
-    return check_range(finite_scalar(value, name), name, low=0.0, low_inclusive=False)
+    return check_range(real_number(value, name), name, low=0.0, low_inclusive=False)
 
 
 @dataclass(frozen=True)
@@ -348,7 +348,7 @@ def scatter_budget(
 
 
 def _nonnegative(value, name):
-    return check_range(finite_scalar(value, name), name, low=0.0)
+    return check_range(real_number(value, name), name, low=0.0)
 
 
 def scatter_budget_table(
