@@ -9,7 +9,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from harp_analysis import earth, kepler, mks, trajectory
-from harp_analysis.launch import HP_CHAPTER_2, Launch, baseline_chapter_4
+from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, Launch, baseline_chapter_4
 from harp_analysis.projectiles import BASELINE, HP
 from harp_analysis.validation import ModelValidityWarning
 
@@ -254,6 +254,16 @@ def test_grazing_elevation_fails_at_the_call_naming_the_elevation():
                 mks.for_launch(baseline_chapter_4(0.001), warn=warn)
             with pytest.raises(ValueError, match="elevation"):
                 mks.simulate_mks(baseline_chapter_4(0.001), warn=warn)
+
+
+@pytest.mark.parametrize("speed_m_s", [300.0, 1000.0])
+def test_a_launch_whose_mks_descends_from_the_muzzle_is_named(speed_m_s):
+    """LP at 5 deg and 300 or 1000 m/s: beta ~ 6 puts the first zero of du/dtheta behind the
+    gun; the table's call said only "theta_rad must be sorted and non-negative" (issue 25)."""
+    launch = LP_CHAPTER_2.but(speed_m_s=speed_m_s, elevation_deg=5.0)
+    for call in (mks.for_launch, mks.simulate_mks):
+        with pytest.raises(ValueError, match=r"no ascent at elevation_rad = 0.0872665 \(5 deg\)"):
+            call(launch, warn=False)
 
 
 @pytest.fixture(scope="module")

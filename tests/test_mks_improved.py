@@ -16,7 +16,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from harp_analysis import kepler, mks, mks_improved, mks_improvement
-from harp_analysis.launch import baseline_chapter_4
+from harp_analysis.launch import LP_CHAPTER_2, baseline_chapter_4
 from harp_analysis.validation import ModelValidityWarning
 
 NON_ROTATING_JUDGED = [
@@ -270,6 +270,26 @@ def test_warns_where_the_air_carries_much_of_the_angular_momentum():
         except ValueError:
             pass  # it may also find no finite re-entry decay; the warning came first
     assert mks_improved.air_momentum_share(baseline_chapter_4(45.0)) == 0.0
+
+
+def test_a_westward_descent_that_loses_all_its_momentum_is_named():
+    """Fired west from Barbados at 30.8 deg, the air turning with the Earth drags the descent's
+    inertial h toward its own: a trial step of the re-entry march lost all of h and divided by
+    zero (ZeroDivisionError, issue 25); now the march shortens such a step, as scipy's does,
+    and the decay that still loses all of h is refused by name."""
+    from harp_analysis.fire_control import BARBADOS_HP
+
+    launch = BARBADOS_HP.but(elevation_deg=30.845228653704602, bearing_deg=269.9255856283873)
+    with pytest.raises(ValueError, match="loses all of h before the impact"):
+        mks_improved.solve(launch)
+    assert math.isfinite(mks_improved.dissertation(launch).apogee_altitude_m)
+
+
+def test_a_reentry_decay_that_lands_before_the_apogee_is_named():
+    """LP at 30 deg and 2000 m/s: beta_re = 1.2 puts the solution below the launch radius at
+    the ascent's apogee; brentq said only "f(a) and f(b) must have different signs"."""
+    with pytest.raises(ValueError, match="no impact after its apogee"):
+        mks_improved.solve(LP_CHAPTER_2.but(speed_m_s=2000.0, elevation_deg=30.0))
 
 
 def test_bad_input_is_refused_by_name():

@@ -559,6 +559,15 @@ class ModifiedKeplerSolution:
             # cached_property's own storage; a failed iteration raises when it is asked for
             if reached >= 2:
                 self.__dict__["_first_zero_apogee"] = apogee
+                if apogee[0, 0] < 0.0:
+                    raise ValueError(
+                        f"the MKS has no ascent at elevation_rad = "
+                        f"{self.elevation_rad[0, 0]:.6g} "
+                        f"({math.degrees(self.elevation_rad[0, 0]):.6g} deg): beta = "
+                        f"{self.beta[0, 0]:.3g} (eq 3.22) is so large that its solution "
+                        "descends from the muzzle (its apogee lies behind the gun); the text "
+                        "keeps beta below 0.25: raise the elevation or the speed"
+                    )
             if reached == 3:
                 self.__dict__["impact_angle"] = impact[0]
         else:

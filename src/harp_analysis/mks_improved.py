@@ -272,7 +272,10 @@ def _ascent_losses(path, tau, h_inf, decay, apogee, radius, air):
 def _descent_rate(theta, loss, path, tau, h_inf, air):
     """dL/dtheta along the MKS of ``path`` flown with the speed lost so far, h = h_inf e^-L."""
     u, slope, _ = mks._point(path, 0, tau, theta)
-    return _loss_rate(theta, u, slope, h_inf * math.exp(-loss), air)[0]
+    h = h_inf * math.exp(-loss)
+    if not h > 0:  # every bit of angular momentum lost (a trial step's): no finite rate
+        return math.inf
+    return _loss_rate(theta, u, slope, h, air)[0]
 
 
 @jit(inline=True)
@@ -284,6 +287,8 @@ def _march(theta, index, loss, start, stop, y, path, tau, h_inf, air, rtol, atol
     ``stop``, the next index and whether it got there (a rate that is not finite, or a step
     too small, stops it). The rate is called from four places, each compiled inline: the
     fewer, the shorter the compilation."""
+    if stop <= start:  # a piece of no length: the descent starts on one of the air's levels
+        return y, index, True
     a, b, c, e3, e5 = TABLEAU
     a_extra, c_extra, d = DENSE_TABLEAU
     k, terms = np.empty(DENSE_STAGES), np.empty(7)
@@ -321,13 +326,14 @@ def _march(theta, index, loss, start, stop, y, path, tau, h_inf, air, rtol, atol
                 three += e3[j] * k[j]
             five, three = (five / scale) ** 2, (three / scale) ** 2
             error = 0.0 if five == 0 and three == 0 else h * five / math.sqrt(five + 0.01 * three)
-            if not math.isfinite(error):
-                return y, index, False
             if error < 1:
                 factor = 10.0 if error == 0 else min(10.0, 0.9 * error ** (-1 / 8))
                 h_abs = h * (min(1.0, factor) if rejected else factor)
                 break
-            h_abs, rejected = h * max(0.2, 0.9 * error ** (-1 / 8)), True
+            # as scipy does, a step whose error is not finite (a trial stage that lost every
+            # bit of h) is shortened fivefold
+            shrink = 0.9 * error ** (-1 / 8) if math.isfinite(error) else 0.0
+            h_abs, rejected = h * max(0.2, shrink), True
             if h_abs < min_step:
                 return y, index, False
         if index < theta.size and theta[index] <= t_new:  # the interpolant at the points passed
@@ -540,8 +546,11 @@ def _reentry_decay(ascent: mks.ModifiedKeplerSolution, air: _Air) -> tuple[float
     _, loss, tau = _along_descent(ascent, air)
     if not np.all(np.isfinite(loss)):
         raise ValueError(
-            "the improved MKS's re-entry decay has no finite solution for this launch: near a "
-            "vertical in the inertial frame the air's angular momentum omega n_z r^2 rivals h"
+            "the improved MKS's re-entry decay has no finite solution for this launch: on its "
+            "descent the air, turning with the Earth, drags the inertial angular momentum h "
+            "toward its own omega n_z r^2 (a westward or near-vertical shot) and the "
+            "exponential decay loses all of h before the impact; the dissertation's MKS "
+            "(mks_improved.dissertation) or the 3DOF flies it"
         )
     total = float(loss[-1])
     return (0.0, math.inf) if total == 0.0 else (total, tau)
@@ -634,6 +643,19 @@ class ImprovedSolution:
         high += 0.05 * (high - low)  # a re-entry gain (beta_re < 0) lands a little further
         path, tau, _ = _path(self.ascent)
         constants = (path, tau, self._rates, self._amplitudes, 1 / self.radius_m)
+        below_at_apogee = _impact_excess(low, *constants) > 0
+        if below_at_apogee or _impact_excess(high, *constants) < 0:
+            where = (
+                "below the launch radius already at the ascent's apogee"
+                if below_at_apogee
+                else "above it beyond 1.05 times the ascent's range"
+            )
+            raise ValueError(
+                f"the improved MKS of this launch has no impact after its apogee: its re-entry "
+                f"decay (beta_re = {self.beta_reentry:.3g}; the ascent's "
+                f"beta = {float(self.ascent.beta[0, 0]):.3g}) puts it {where}; the "
+                "dissertation's MKS (mks_improved.dissertation) or the 3DOF flies it"
+            )
         return float(
             brentq(_impact_excess, low, high, constants, xtol=1e-15, rtol=4 * np.finfo(float).eps)
         )
