@@ -5,13 +5,17 @@ show against the engines flown directly, and that bad input shows as a message.
 import html
 import math
 import re
+import runpy
 import warnings
 from dataclasses import replace
 from functools import cache
+from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from tornado.web import HTTPError
+from traitlets.config import Config
 
 from harp_analysis import earth, explorer, harp, mks, mks_improved, mks_improvement, threedof
 from harp_analysis.launch import HP_CHAPTER_2, Launch
@@ -344,3 +348,44 @@ def test_cd0_a_is_shown_to_its_meaningful_digits():
         exact = launch.launch_drag_coefficient * launch.projectile.reference_area_m2
         shown = view.controls["drag_area_m2"].value
         assert shown == float(f"{exact:.4g}"), (name, shown, exact)
+
+
+def _served_settings(kernels: str):
+    """serve/voila.py (what `make explore` gives Voila) run as traitlets runs a config file."""
+    config = Config()
+    path = Path(__file__).resolve().parents[1] / "serve" / "voila.py"
+    environment = {"HARP_ANALYSIS_EXPLORER_KERNELS": kernels}
+    with pytest.MonkeyPatch.context() as patch:
+        for name, value in environment.items():
+            patch.setenv(name, value)
+        runpy.run_path(str(path), init_globals={"get_config": lambda: config})
+    return config
+
+
+def test_the_served_explorer_culls_idle_kernels_and_refuses_pages_beyond_its_cap():
+    """Kernels live and starting (pending) count; at the cap a page gets a 503 with a
+    sentence for the reader, below it the notebook goes on."""
+    config = _served_settings("3")
+    manager = config.MappingKernelManager
+    assert manager.cull_idle_timeout > 0 and manager.cull_interval > 0
+    assert manager.cull_connected is False  # a page left open keeps its kernel
+    hook = config.VoilaConfiguration.prelaunch_hook
+
+    class Manager:
+        def __init__(self, live, pending):
+            self._live, self._pending_kernels = live, dict.fromkeys(pending)
+
+        def list_kernel_ids(self):
+            return list(self._live)
+
+    class Handler:
+        def __init__(self, live, pending=()):
+            self.kernel_manager = Manager(live, pending)
+
+    notebook = object()
+    assert hook(Handler(["a", "b"]), notebook=notebook, cwd=".") is notebook
+    for live, pending in ((["a", "b", "c"], ()), (["a"], ["b", "c"])):
+        with pytest.raises(HTTPError) as refused:
+            hook(Handler(live, pending), notebook=notebook, cwd=".")
+        assert refused.value.status_code == 503
+        assert "The explorer is busy: 3 pages are open" in refused.value.reason
