@@ -319,6 +319,20 @@ def test_bad_input_names_the_control_by_its_label_never_by_a_code_name(changes, 
     assert not CODE_NAME.findall(str(error.value)), str(error.value)
 
 
+@pytest.mark.parametrize(
+    "changes",
+    [
+        {"speed_m_s": 200.0, "elevation_deg": 1.0},  # no MKS: its closed form underflows
+        {"speed_m_s": 9000.0, "elevation_deg": 89.5},  # the 3DOF's time limit
+    ],
+)
+def test_the_engines_messages_reach_the_reader_without_code_names(changes):
+    launch = explorer.launch_for(replace(explorer.presets()["Chapter 2 A: HP"], **changes))
+    _, messages = explorer.fly(launch)
+    assert len(messages) >= 2  # the wind's and the case's own
+    assert not CODE_NAME.findall(" ".join(messages)), messages
+
+
 def test_messages_shown_name_fields_by_their_labels_never_by_code_names():
     """The engines' warnings and refusals name the Launch's fields (launch.cross_wind_m_s,
     the day's density as a fraction): the page gives the control's label and unit."""

@@ -123,6 +123,10 @@ _READERS_WORDS = {
     "diameter_m": (LABELS["diameter_m"], 1.0),
     "reference_area_m2": ("the reference area (m^2)", 1.0),
     "launch_speed_m_s": (LABELS["speed_m_s"], 1.0),
+    "elevation_rad": (LABELS["elevation_deg"], 180.0 / math.pi),
+    "theta_rad": ("the angular range (rad)", 1.0),
+    "max_time_s": ("the flight's time limit (s)", 1.0),
+    "h_inf": ("h∞", 1.0),
 }
 _CODE_NAME = re.compile(
     r"\b(?:launch\.|projectile\.)?(" + "|".join(_READERS_WORDS) + r")\b(?: = ([-+.\deEinfa]+))?"
