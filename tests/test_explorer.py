@@ -253,9 +253,7 @@ def _snapped(slider, value):
     return slider.min + round((held - slider.min) / slider.step) * slider.step
 
 
-@pytest.mark.parametrize(
-    "name", ["HARP Barbados: round 181", "HARP Yuma: round 4", "Chapter 2 A: LP"]
-)
+@pytest.mark.parametrize("name", ["HARP Barbados: round 181", "HARP Yuma: round 4"])
 def test_a_preset_flies_as_named_whatever_its_sliders_show(name):
     """A browser's slider snaps the value it is given to its step and sends that back (44 of
     the 50 presets were changed so: Barbados round 181 flew 1798 m/s, not 1798.32, and lost
@@ -356,8 +354,9 @@ def test_messages_shown_name_fields_by_their_labels_never_by_code_names():
 
 
 def test_cd0_a_is_shown_to_its_meaningful_digits():
+    view = explorer.Explorer("Chapter 2 A: HP")
     for name in ("Chapter 2 A: HP", "Chapter 4 B: baseline, 45 deg", "HARP Yuma: round 4"):
-        view = explorer.Explorer(name)
+        view.preset.value = name
         launch = explorer.launch_for(view.settings)
         exact = launch.launch_drag_coefficient * launch.projectile.reference_area_m2
         shown = view.controls["drag_area_m2"].value
