@@ -8,7 +8,9 @@ time of flight, its distance from the 3DOF at the same time, and the models' val
 messages), :func:`draw` (the figure as PNG bytes) and the two HTML views. :class:`Explorer`
 lays them out as ipywidgets; every control change flies the launch again (the MKS and the 3DOF
 take milliseconds, drawing a tenth of a second), and bad input shows as a message, never as a
-traceback.
+traceback. Messages name a field by its control's label and unit (:data:`LABELS`,
+:func:`in_readers_words`), never by the code's name; the models' validity warnings are all
+recorded and shown, never silenced.
 
 The MKS here is the text's (Chapter 5's ECI MKS where the Earth turns,
 :func:`harp_analysis.mks_improved.dissertation`), the improved one on request; the HARP
@@ -47,6 +49,8 @@ __all__ = [
     "Settings",
     "Flown",
     "LABELS",
+    "SLIDERS",
+    "in_readers_words",
     "presets",
     "preset",
     "launch_for",
