@@ -136,14 +136,16 @@ _FLIGHT = dict(density_altitude="spherical")
 
 def test_mlt_calls_per_segment():
     """Two coefficient evaluations and three propagations a segment, one more propagation per
-    brentq evaluation and one for the apogee state (the radial-velocity checks reuse states)."""
+    brentq evaluation, one for the apogee state and one for the impact state (checked for the
+    pitch turned and an apogee inside the landing segment; the radial-velocity checks reuse
+    states)."""
     calls, table = effort._mlt_run(_LAUNCH, **_FLIGHT)
     n = table.attrs["steps"]
     count = {code.co_qualname: k for code, k in calls.items() if code.co_filename == mlt.__file__}
     assert count["segment_coefficients"] == 2 * n
     assert count["_solve_segment"] == count["_Segment.duration_s"] == n
     brentq_evaluations = count.get("simulate_mlt.<locals>.<lambda>", 0)
-    assert count["propagate_segment"] == 3 * n + brentq_evaluations + 1
+    assert count["propagate_segment"] == 3 * n + brentq_evaluations + 2
     assert count["_phi"] >= 4 * count["propagate_segment"]
     assert n / 4 < count["_radial_velocity"] < 3 * n / 4  # the checks stop at the apogee
 
