@@ -147,7 +147,7 @@ def test_bad_uncertainties_are_named():
         (10**12, ValueError, r"samples must lie in \[16, 1.04858e\+06\]; got 1e\+12"),
         (1, ValueError, r"samples must lie in \[16, "),
         (15, ValueError, r"samples must lie in \[16, "),
-        (64.0, TypeError, "samples must be a whole number; got 64.0"),
+        (64.5, ValueError, "samples must be a whole number; got 64.5"),
         ("64", TypeError, "samples must be a whole number; got '64'"),
         (True, TypeError, "samples must be a whole number"),
     ],

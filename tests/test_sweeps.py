@@ -5,6 +5,7 @@ worker dies; and the seeded sample whose chunks, concatenated, are the single dr
 import dataclasses
 import itertools
 import logging
+import math
 import operator
 import os
 import signal
@@ -173,9 +174,9 @@ def test_bad_arguments_are_named():
         sweep(abs, [1], reduce=0, initial=0)
     with pytest.raises(TypeError, match="initial is the start of reduce's fold"):
         sweep(abs, [1], initial=0)
-    with pytest.raises(ValueError, match="window must be >= 1; got 0"):
+    with pytest.raises(ValueError, match=r"window must lie in \[1, inf\]; got 0"):
         sweep(abs, [1], window=0)
-    with pytest.raises(TypeError, match="window must be a whole number; got 2.5"):
+    with pytest.raises(ValueError, match="window must be a whole number; got 2.5"):
         sweep(abs, [1], window=2.5)
 
 
@@ -223,18 +224,22 @@ def test_chunks_split_as_stated():
     assert chunks(3, 5) == [range(0, 3)]
 
 
-@given(value=st.one_of(st.floats(), st.text(), st.booleans(), st.none()))
+_NOT_WHOLE = st.floats().filter(lambda x: not (math.isfinite(x) and x.is_integer()))
+
+
+@given(value=st.one_of(_NOT_WHOLE, st.text(), st.booleans(), st.none()))
 def test_chunks_refuse_anything_but_whole_numbers(value):
-    with pytest.raises(TypeError, match="count must be a whole number"):
+    with pytest.raises((TypeError, ValueError), match="count must be (a whole number|finite)"):
         chunks(value, 3)
-    with pytest.raises(TypeError, match="size must be a whole number"):
+    with pytest.raises((TypeError, ValueError), match="size must be (a whole number|finite)"):
         chunks(3, value)
+    assert chunks(4.0, 3) == chunks(4, 3)  # a whole float is its number
 
 
 def test_chunks_refuse_nothing_to_split():
-    with pytest.raises(ValueError, match="count must be >= 1; got 0"):
+    with pytest.raises(ValueError, match=r"count must lie in \[1, inf\]; got 0"):
         chunks(0, 3)
-    with pytest.raises(ValueError, match="size must be >= 1; got -2"):
+    with pytest.raises(ValueError, match=r"size must lie in \[1, inf\]; got -2"):
         chunks(10, -2)
 
 
@@ -263,10 +268,10 @@ def test_sobol_chunks_keep_the_balance_of_the_whole_sample():
 
 
 def test_bad_sample_arguments_are_named():
-    with pytest.raises(ValueError, match="seed must be >= 0"):
+    with pytest.raises(ValueError, match=r"seed must lie in \[0, inf\]"):
         sample_chunk(-1, 2, range(3))
     with pytest.raises(TypeError, match="dimensions must be a whole number"):
-        sample_chunk(1, 2.0, range(3))
+        sample_chunk(1, "2", range(3))
     with pytest.raises(ValueError, match="indices must be a range"):
         sample_chunk(1, 2, range(0, 10, 2))
     with pytest.raises(ValueError, match="indices must be a range"):

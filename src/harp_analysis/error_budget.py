@@ -29,7 +29,6 @@ the one-at-a-time table scales linearly with each size, so a reader can rescale 
 from __future__ import annotations
 
 import math
-import numbers
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, replace
 from functools import partial
@@ -47,7 +46,7 @@ from .sites import BARBADOS
 from .sweeps import SAMPLING_METHODS, chunks, sample_chunk, sweep
 from .threedof import fly_3dof
 from .trajectory import launch_frame, rotate_about_axis
-from .validation import check_choice, check_range, real_number
+from .validation import check_choice, check_range, real_number, whole_number
 
 __all__ = [
     "Uncertainty",
@@ -325,13 +324,6 @@ MAX_BASE_SAMPLES = 2**16
 MIN_BASE_SAMPLES = 8
 
 
-def _count(value, name: str, low: int, high: int) -> int:
-    """``value`` as a whole number within [low, high], or an error naming ``name``."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"{name} must be a whole number; got {value!r:.60}")
-    return int(check_range(float(value), name, low=low, high=high))
-
-
 def _check_launch(launch) -> Launch:
     if not isinstance(launch, Launch):
         raise TypeError(f"launch must be a Launch; got {type(launch).__name__}")
@@ -373,8 +365,8 @@ def dispersion(
     [:data:`MIN_SAMPLES`, :data:`MAX_SAMPLES`], ``chunk`` within [1, :data:`MAX_CHUNK`]."""
     launch = _check_launch(launch)
     uncertainties = _check_uncertainties(uncertainties)
-    samples = _count(samples, "samples", MIN_SAMPLES, MAX_SAMPLES)
-    chunk = _count(chunk, "chunk", 1, MAX_CHUNK)
+    samples = whole_number(samples, "samples", low=MIN_SAMPLES, high=MAX_SAMPLES)
+    chunk = whole_number(chunk, "chunk", low=1, high=MAX_CHUNK)
     check_choice(method, "method", SAMPLING_METHODS)
     if not uncertainties:
         raise ValueError("uncertainties must name at least one input (an sd of 0 is allowed)")
@@ -447,7 +439,9 @@ def sensitivity_indices(
 
     launch = _check_launch(launch)
     uncertainties = _check_uncertainties(uncertainties)
-    base_samples = _count(base_samples, "base_samples", MIN_BASE_SAMPLES, MAX_BASE_SAMPLES)
+    base_samples = whole_number(
+        base_samples, "base_samples", low=MIN_BASE_SAMPLES, high=MAX_BASE_SAMPLES
+    )
     names = [u.name for u in uncertainties]
     problem = {"num_vars": len(names), "names": names, "bounds": [[0.0, 1.0]] * len(names)}
     unit = sample.sample(problem, base_samples, calc_second_order=False, seed=seed)

@@ -36,7 +36,6 @@ file, and no values are ever invented.
 from __future__ import annotations
 
 import math
-import numbers
 from pathlib import Path
 
 import numpy as np
@@ -46,14 +45,13 @@ from . import earth, eci, harp
 from .harp_data import HarpDataError
 from .paths import HARP_DATA_DIR
 from .sites import get_site
-from .trajectory import launch_frame, surface_ranges
-from .validation import check_range, real_number
+from .trajectory import MAX_ROWS, launch_frame, surface_ranges
+from .validation import whole_number
 
 __all__ = [
     "RADAR_DIR",
     "RADAR_NAMES",
     "TEXT_SPLASH_RANGES_KM",
-    "MAX_POINTS",
     "round_trajectory",
     "splash_range_km",
     "load_radar_track",
@@ -68,24 +66,9 @@ TEXT_SPLASH_RANGES_KM = {181: {"text's MKS": 39.6, "observed splash": 41.1}}
 _KM = 1e3
 
 
-#: Points of a round's trajectory table at most (a table of 16 MB).
-MAX_POINTS = 10**6
-
-
-def _whole(value, name: str, low: int, high: float = math.inf) -> int:
-    """``value`` as an int in [low, high]: a float must be whole (181.7 is no round number),
-    a string or a bool is refused, each by ``name``."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} must be a whole number; got {value!r:.60}")
-    number = real_number(value, name)
-    if number != int(number):
-        raise ValueError(f"{name} must be a whole number; got {value!r}")
-    return int(check_range(number, name, low=low, high=high))
-
-
 def _round_row(site, round_number):
     launch_site = get_site(site)
-    number = _whole(round_number, "round_number", low=1)
+    number = whole_number(round_number, "round_number", low=1)
     table = harp.appendix_rounds(launch_site.name)
     rows = table[table.round_number == number]
     if rows.empty:
@@ -103,7 +86,7 @@ def round_trajectory(
     range; module docstring). ``model`` and its Cd0 A as in :func:`harp.predicted_apogees`,
     whose default it shares; the round flies its recovered exact muzzle speed. ValueError for a
     round not in the site's appendix."""
-    n_points = _whole(n_points, "n_points", low=2, high=MAX_POINTS)
+    n_points = whole_number(n_points, "n_points", low=2, high=MAX_ROWS)
     launch_site, _, row = _round_row(site, round_number)
     correction = eci.launch_correction(
         row.muzzle_speed_m_s,
@@ -221,5 +204,5 @@ def load_radar_track(site: str, round_number: int) -> pd.DataFrame | None:
     ``range_m``, ``radar``, ``source_line``; the file's comments in ``attrs["provenance"]``),
     or None if ``data/harp/radar`` has no file for it. HarpDataError names the file, line and
     column of a malformed row."""
-    path = _radar_path(site, _whole(round_number, "round_number", low=1))
+    path = _radar_path(site, whole_number(round_number, "round_number", low=1))
     return _read_radar(path) if path.is_file() else None

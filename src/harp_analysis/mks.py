@@ -46,8 +46,14 @@ from . import earth
 from .atmosphere import SEA_LEVEL_DENSITY_KG_M3, TEXT_DECAY_CONSTANT_PER_M, get_atmosphere
 from .compiled import formula, jit
 from .launch import Launch, Launches
-from .trajectory import describe, launch_frame
-from .validation import ModelValidityWarning, check_range, finite_array, finite_scalar
+from .trajectory import MAX_ROWS, describe, launch_frame
+from .validation import (
+    ModelValidityWarning,
+    check_range,
+    finite_array,
+    positive_scalar,
+    whole_number,
+)
 
 __all__ = [
     "ModifiedKeplerSolution",
@@ -75,13 +81,15 @@ EARTH_SPHERE_OF_INFLUENCE_M = 9.25e8
 _LAUNCH_CONDITION_TOLERANCE = 1e-6
 
 
+#: Series terms at most: Fig 4.6's error stops falling after five, and each term is a column of
+#: every solution's table.
+MAX_TERMS = 100
+
+
 def check_n_terms(n_terms) -> int:
-    """``n_terms``, a count of series terms, as an int >= 1; ValueError naming it otherwise
-    (2.5 is refused, not truncated)."""
-    value = finite_scalar(n_terms, "n_terms")
-    if isinstance(n_terms, bool) or value != int(value):
-        raise ValueError(f"n_terms must be a whole number of series terms; got {n_terms!r}")
-    return int(check_range(value, "n_terms", low=1))
+    """``n_terms``, a count of series terms, as an int in [1, :data:`MAX_TERMS`]; an error naming
+    it otherwise (2.5 and "3" are refused, not read as numbers)."""
+    return whole_number(n_terms, "n_terms", low=1, high=MAX_TERMS)
 
 
 @cache
@@ -515,7 +523,8 @@ class ModifiedKeplerSolution:
             _argument(tau, "tau", low=0.0),
             _argument(radius_m, "radius_m", low=0.0, low_inclusive=False, unit="m"),
         ]
-        self.n_terms = n_terms if type(n_terms) is int and n_terms >= 1 else check_n_terms(n_terms)
+        valid = type(n_terms) is int and 1 <= n_terms <= MAX_TERMS  # a batch's fast path
+        self.n_terms = n_terms if valid else check_n_terms(n_terms)
         values += [_argument(drive_scale, "drive_scale"), _argument(decay_scale, "decay_scale")]
         # The kernels take each argument once (a number) or once per launch, shape (1,) or
         # (m,); the attributes are (m, 1). A single launch's are rows of one array.
@@ -867,6 +876,7 @@ def for_launch(
     number, rho0 of the launch's air at the gun, k of eq 3.11 (Chapter 3 B), r0 = R + the
     site's altitude. The MKS is planar and drag-only: a wind is ignored with a warning, and a
     rotating Earth is :func:`harp_analysis.eci.solution_for_launch`'s."""
+    decay = positive_scalar(decay_constant_per_m, "decay_constant_per_m", "1/m")
     single = isinstance(launch, Launch)
     launches = Launches.from_launches(launch)
     launches.require_zero(
@@ -893,9 +903,9 @@ def for_launch(
         projectile.reference_area_m2,
         projectile.mass_kg,
         elevation,
-        decay_constant_per_m,
+        decay,
     )
-    tau = decay_rate_tau(elevation, decay_constant_per_m, radius)
+    tau = decay_rate_tau(elevation, decay, radius)
     count = len(launches)
 
     def column(values):  # one number where the launches share it (the class broadcasts)
@@ -930,7 +940,7 @@ def simulate_mks(
     Positions are Earth-centred (z north, x toward longitude 0) in the launch plane; Mach is
     the speed over the launch atmosphere's speed of sound; the drag coefficient is the MKS's
     constant Cd0 and drag/gravity is its drag in eq 3.11's air, rho0 exp(-k a)."""
-    count = int(check_range(finite_scalar(n_points, "n_points"), "n_points", low=2))
+    count = whole_number(n_points, "n_points", low=2, high=MAX_ROWS)
     if not isinstance(launch, Launch):
         raise TypeError(f"launch must be a Launch; got {type(launch).__name__}")
     solution = for_launch(

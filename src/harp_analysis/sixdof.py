@@ -104,6 +104,7 @@ from .trajectory import (
     TruncatedFlightWarning,
     describe,
     flight_path_angle,
+    output_times,
     surface_ranges,
 )
 from .validation import check_choice, check_range, finite_array, finite_scalar, positive_scalar
@@ -677,7 +678,7 @@ def flight_table(
     every ``output_step_s`` and at the end, with the shared metadata
     (:func:`harp_analysis.trajectory.describe`)."""
     end = float(solution.t[-1])
-    times = np.append(np.arange(0.0, end, output_step_s), end)
+    times = output_times(end, output_step_s)
     frame = trajectory_table(model, times, solution.sol(times))
     highest = None
     if solution.t_events[1].size:

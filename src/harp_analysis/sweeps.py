@@ -18,7 +18,6 @@ the seed and its indices: the chunks, concatenated, are the single draw.
 
 from __future__ import annotations
 
-import numbers
 import os
 import sys
 import warnings
@@ -29,7 +28,7 @@ from typing import Any, TypeVar
 import numpy as np
 from scipy.stats import qmc
 
-from .validation import check_choice
+from .validation import check_choice, whole_number
 
 __all__ = [
     "sweep",
@@ -67,14 +66,6 @@ def interactive() -> bool:
     stream = sys.stderr
     terminal = stream is not None and hasattr(stream, "isatty") and stream.isatty()
     return bool(terminal) or "JPY_SESSION_NAME" in os.environ
-
-
-def _whole_number(value, name: str, low: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"{name} must be a whole number; got {value!r}")
-    if value < low:
-        raise ValueError(f"{name} must be >= {low}; got {value}")
-    return int(value)
 
 
 def _check_client(client) -> None:
@@ -210,7 +201,7 @@ def sweep(
     if not isinstance(items, Iterable):
         raise TypeError(f"items must be iterable; got {type(items).__name__}")
     total = len(items) if isinstance(items, Sized) else None
-    max_items = _whole_number(max_items, "max_items", low=1)
+    max_items = whole_number(max_items, "max_items", low=1)
     if total is not None and total > max_items:
         raise SweepLengthError(
             f"items has {total} items, more than max_items={max_items}; pass a larger "
@@ -218,7 +209,7 @@ def sweep(
         )
     items = _bounded(items, max_items)
     if window is not None:
-        window = _whole_number(window, "window", low=1)
+        window = whole_number(window, "window", low=1)
     if client is not None:
         _check_client(client)
     with _progress_bar(progress, total, description) as advance:
@@ -240,8 +231,8 @@ def chunks(count: int, size: int) -> list[range]:
     """The half-open ranges of sample indices [0, size), [size, 2 size), ... that cover
     ``count`` samples, the last one shorter if ``size`` does not divide ``count``: the items of
     a sweep over a large sample (a list, so a progress bar knows its length)."""
-    count = _whole_number(count, "count", low=1)
-    size = _whole_number(size, "size", low=1)
+    count = whole_number(count, "count", low=1)
+    size = whole_number(size, "size", low=1)
     if -(-count // size) > MAX_ITEMS:
         raise SweepLengthError(
             f"count = {count} in chunks of size = {size} makes more than MAX_ITEMS = "
@@ -259,8 +250,8 @@ def sample_chunk(seed: int, dimensions: int, indices: range, method: str = "sobo
     ``method`` "sobol": scipy's scrambled Sobol' sequence (its balance holds for a whole sample
     of a power of 2 points; a chunk need not be one), fast-forwarded to the chunk's start;
     "random": numpy's Philox generator, its counter advanced to the chunk's start."""
-    seed = _whole_number(seed, "seed", low=0)
-    dimensions = _whole_number(dimensions, "dimensions", low=1)
+    seed = whole_number(seed, "seed", low=0)
+    dimensions = whole_number(dimensions, "dimensions", low=1)
     if not isinstance(indices, range) or indices.step != 1 or indices.start < 0:
         raise ValueError(f"indices must be a range of sample numbers >= 0, step 1; got {indices!r}")
     check_choice(method, "method", SAMPLING_METHODS)

@@ -64,6 +64,7 @@ from .trajectory import (
     describe,
     dot,
     launch_axes,
+    output_times,
     surface_range,
     turned_about_axis,
 )
@@ -647,7 +648,7 @@ def simulate_3dof(
     summary, counts, weather, axes, step_times, steps = _fly(batch, max_time_s, rtol, record=True)
     impact = summary[7, 0] == 1.0
     end_t = summary[3, 0] if impact else step_times[-1]
-    times = np.append(np.arange(0.0, end_t, step), end_t)
+    times = output_times(end_t, step)
     rows = _kernels(*batch.codes)[1](
         times, step_times, steps, np.ascontiguousarray(weather[:, 0]), axes, batch.dynamics
     )

@@ -39,6 +39,7 @@ from .validation import ModelValidityWarning
 
 __all__ = [
     "BASE_COLUMNS",
+    "MAX_ROWS",
     "METADATA_KEYS",
     "STOP_REASONS",
     "TruncatedFlightWarning",
@@ -54,7 +55,25 @@ __all__ = [
     "launch_axes",
     "surface_range",
     "climb_angle",
+    "output_times",
 ]
+
+#: Rows of a trajectory table at most (a table of about 100 MB): a step that asks for more is
+#: refused by name, not allocated until the machine stops.
+MAX_ROWS = 10**6
+
+
+def output_times(end_s: float, output_step_s: float) -> np.ndarray:
+    """The output times of a flight that ended at ``end_s``: every ``output_step_s`` from the
+    launch, and the end. ValueError naming ``output_step_s`` beyond :data:`MAX_ROWS` rows."""
+    rows = end_s / output_step_s
+    if rows > MAX_ROWS:
+        raise ValueError(
+            f"output_step_s = {output_step_s:g} s asks for {rows:.3g} rows of a flight of "
+            f"{end_s:.4g} s (at most {MAX_ROWS:,}): choose a longer step"
+        )
+    return np.append(np.arange(0.0, end_s, output_step_s), end_s)
+
 
 BASE_COLUMNS = (
     "time_s",

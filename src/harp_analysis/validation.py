@@ -15,6 +15,7 @@ __all__ = [
     "finite_scalar",
     "real_number",
     "real_array",
+    "whole_number",
     "positive_scalar",
     "check_range",
     "check_choice",
@@ -26,7 +27,10 @@ class ModelValidityWarning(UserWarning):
 
 
 def finite_array(value, name: str) -> np.ndarray:
-    """Return ``value`` as a float64 array, or raise naming ``name`` if it is not finite numbers."""
+    """Return ``value`` as a float64 array, or raise naming ``name`` if it is not finite numbers
+    (strings and booleans included, which numpy would read as numbers: "1e-9" as 1e-9)."""
+    if np.asarray(value).dtype.kind in "bUSc":
+        raise TypeError(f"{name} must be a real number or an array of them; got {value!r:.80}")
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError) as exc:
@@ -63,6 +67,19 @@ def real_array(value, name: str) -> np.ndarray:
             f"(of dtype {array.dtype.kind!r})"
         )
     return finite_array(array, name)
+
+
+def whole_number(value, name: str, *, low: int, high: float = math.inf) -> int:
+    """``value`` as an int in [low, high], or an error naming ``name``: TypeError for anything
+    that is not a real number (a string such as "3" or a bool included), ValueError for a
+    number that is not whole (2.5 series terms, round 181.7) or outside the bounds (a count
+    bounded so that it cannot allocate until the machine stops)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a whole number; got {value!r:.60}")
+    number = real_number(value, name)
+    if number != int(number):
+        raise ValueError(f"{name} must be a whole number; got {value!r}")
+    return int(check_range(number, name, low=low, high=high))
 
 
 def positive_scalar(value, name: str, unit: str = "") -> float:
