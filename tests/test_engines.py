@@ -20,8 +20,8 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from harp_analysis import appendix_a, earth, eci, kepler, mks, mlt, sixdof, threedof
-from harp_analysis.launch import HP_CHAPTER_2, chapter_2
+from harp_analysis import appendix_a, earth, eci, kepler, mks, mks_improved, mlt, sixdof, threedof
+from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, chapter_2
 from harp_analysis.projectiles import HP
 from harp_analysis.trajectory import BASE_COLUMNS, METADATA_KEYS
 from harp_analysis.validation import ModelValidityWarning
@@ -227,3 +227,95 @@ def test_a_denser_day_flies_as_a_lighter_projectile(engine):
     assert denser_day["apogee_altitude_m"] < normal["apogee_altitude_m"] - 100.0
     for key in ("apogee_altitude_m", "range_m", "time_of_flight_s"):  # to the rtol of 1e-9
         assert denser_day[key] == pytest.approx(light_round[key], rel=1e-8)
+
+
+# --- every engine over the launches it accepts -------------------------------------------------
+def _improved_mks(launch):
+    solution = mks_improved.solve(launch)
+    return {"apogee_altitude_m": solution.apogee_altitude_m, "range_m": solution.impact_range_m[0]}
+
+
+#: What each engine is checked against: the 6DOF for linear theory (its own equations with
+#: products dropped), the 3DOF for the point-mass models, and each other for the simulations.
+def _eci_mks(launch):
+    solution = eci.solution_for_launch(launch)
+    return {
+        "apogee_altitude_m": float(solution.apogee_altitude()),
+        "range_m": earth.RADIUS_M * float(solution.impact_angle),
+    }
+
+
+#: Every engine with its validity checks on (the suite's MKS adapters above turn them off).
+_GRID_ENGINES = {
+    "3DOF": threedof.simulate_3dof,
+    "6DOF": sixdof.simulate_6dof,
+    "MLT": mlt.simulate_mlt,
+    "MKS": mks.simulate_mks,
+    "ECI MKS": _eci_mks,
+    "improved MKS": _improved_mks,
+    "Appendix A": lambda launch: appendix_a.simulate_appendix_a(launch, 0.01),
+}
+_REFERENCE = {"3DOF": "6DOF", "6DOF": "3DOF", "MLT": "6DOF"}
+#: The elevations and speeds a Launch accepts, from grazing to almost vertical and from
+#: subsonic to beyond HP's, for the two rigid bodies every engine flies; windless, so that no
+#: engine's warning that it ignores the wind can excuse a wrong result.
+_GRID = [
+    base.but(speed_m_s=speed, elevation_deg=elevation, cross_wind_m_s=0.0)
+    for base in (HP_CHAPTER_2, LP_CHAPTER_2)
+    for speed in (300.0, 1000.0, 2000.0)
+    for elevation in (0.01, 5.0, 45.0, 70.0, 88.0, 89.9)
+]
+#: Agreement without a warning: within 3 % and 300 m of the reference's apogee and range.
+_AGREEMENT = {"rel": 0.03, "abs": 300.0}
+#: A refusal must say what it refuses: the launch's field, the model or its parameter.
+_NAMED = ("elevation", "speed", "segment_length_m", "beta", "MKS", "MLT", "escape")
+_OBSCURE = ("ZeroDivisionError", "OverflowError", "FloatingPointError", "RuntimeError")
+
+
+def _outcome(fly, launch):
+    """(apogee, range) with the validity warnings raised, or the error's message (its type
+    first, if it is not the ValueError of a refusal)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            result = fly(launch)
+        except ValueError as error:
+            return None, [], str(error)
+        except Exception as error:  # obscure whatever it says
+            return None, [], f"{type(error).__name__}: {error}"
+    attrs = result if isinstance(result, dict) else result.attrs
+    flagged = [w for w in caught if issubclass(w.category, ModelValidityWarning)]
+    return (attrs["apogee_altitude_m"], attrs["range_m"]), flagged, None
+
+
+@pytest.fixture(scope="module")
+def grid_outcomes():
+    return {
+        (name, index): _outcome(fly, launch)
+        for name, fly in _GRID_ENGINES.items()
+        for index, launch in enumerate(_GRID)
+    }
+
+
+@pytest.mark.parametrize("name", list(_GRID_ENGINES))
+def test_every_engine_over_the_launch_grid_agrees_warns_or_refuses_by_name(name, grid_outcomes):
+    """Issue 25: nothing flies silently wrong. Each launch of the grid is flown within the
+    reference's tolerance, or warned of (ModelValidityWarning, truncated flights included),
+    or refused with a message that names what it refuses."""
+    silent, obscure = [], []
+    for index, launch in enumerate(_GRID):
+        result, flagged, error = grid_outcomes[name, index]
+        where = f"{launch.projectile.name} {launch.speed_m_s:g} m/s {launch.elevation_deg:g} deg"
+        if error is not None:
+            if error.split(":")[0] in _OBSCURE or not any(word in error for word in _NAMED):
+                obscure.append(f"{where}: {error}")
+            continue
+        if flagged:
+            continue
+        reference, _, _ = grid_outcomes[_REFERENCE.get(name, "3DOF"), index]
+        if reference is None:
+            continue
+        if result != pytest.approx(reference, **_AGREEMENT):
+            silent.append(f"{where}: {result} against {reference}")
+    assert not obscure, obscure
+    assert not silent, silent

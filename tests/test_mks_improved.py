@@ -16,7 +16,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from harp_analysis import kepler, mks, mks_improved, mks_improvement
-from harp_analysis.launch import LP_CHAPTER_2, baseline_chapter_4
+from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, baseline_chapter_4
 from harp_analysis.validation import ModelValidityWarning
 
 NON_ROTATING_JUDGED = [
@@ -331,3 +331,19 @@ def test_map_shares_count_the_points_as_drawn():
     assert shares.points == 4 and shares.inside == 2 and shares.unsolved == 1
     assert shares.better_impact_miss_m == 0.5 and shares.better_impact_miss_m_inside == 0.5
     assert shares.better_max_error_m == 0.0
+
+
+def test_beyond_the_drag_it_was_judged_on_the_improved_mks_warns():
+    """MAX_JUDGED_BETA is the largest beta of the fitting and judging launches (not a number
+    chosen to pass a grid); beyond it the improved MKS warns, and indeed misses the 3DOF's
+    apogee by far more than it does inside (HP at 1 km/s and 45 deg, beta 0.54)."""
+    from harp_analysis import eci, threedof
+
+    judged = mks_improvement.TRAINING + mks_improvement.JUDGING
+    betas = [float(eci.solution_for_launch(one, warn=False).beta.flat[0]) for one in judged]
+    assert max(betas) <= mks_improved.MAX_JUDGED_BETA < max(betas) + 0.01
+    beyond = HP_CHAPTER_2.but(speed_m_s=1000.0, elevation_deg=45.0, cross_wind_m_s=0.0)
+    with pytest.warns(ModelValidityWarning, match=r"improved MKS beta = 0.53\d > 0.47"):
+        solution = mks_improved.solve(beyond)
+    reference = threedof.simulate_3dof(beyond).attrs["apogee_altitude_m"]
+    assert abs(solution.apogee_altitude_m / reference - 1.0) > 0.1

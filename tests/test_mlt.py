@@ -502,3 +502,15 @@ def test_flight_cut_off_by_max_time_warns_and_says_why(engine):
 def test_segments_longer_than_the_updates_of_linear_theory_warn():
     with pytest.warns(ModelValidityWarning, match="segment_length_m = 20000 m"):
         mlt.simulate_mlt(LP_CHAPTER_2, segment_length_m=20_000.0)
+
+
+@pytest.mark.parametrize("speed_m_s, elevation_deg", [(300.0, 89.9), (1000.0, 88.0)])
+def test_a_flight_whose_linear_solution_diverges_is_refused_by_name(speed_m_s, elevation_deg):
+    """Near the vertical the speed falls toward zero at apogee, and linear theory, which follows
+    the arc length at one speed per segment, overflows (it raised OverflowError and
+    ZeroDivisionError from deep inside, or failed in numpy's arange on a NaN time)."""
+    launch = LP_CHAPTER_2.but(speed_m_s=speed_m_s, elevation_deg=elevation_deg, cross_wind_m_s=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelValidityWarning)
+        with pytest.raises(ValueError, match=r"MLT cannot fly LP at elevation_deg = 8.*diverges"):
+            mlt.simulate_mlt(launch)

@@ -120,7 +120,7 @@ from .sixdof import (
     rigid_body_launch,
     trajectory_table,
 )
-from .trajectory import TruncatedFlightWarning, describe
+from .trajectory import TruncatedFlightWarning, describe, output_times
 from .validation import (
     ModelValidityWarning,
     check_choice,
@@ -550,6 +550,20 @@ def _validity_problem(segment: _Segment, model) -> str | None:
     return None
 
 
+def _divergence(launch: Launch, time_s: float, state, problem: str | None) -> str:
+    """Why MLT cannot fly ``launch``: its linear solution left the finite numbers in the
+    segment that starts at ``time_s`` in ``state``."""
+    speed = math.hypot(state[6], state[7], state[8])
+    return (
+        f"MLT cannot fly {launch.projectile.name} at elevation_deg = {launch.elevation_deg:g}, "
+        f"speed_m_s = {launch.speed_m_s:g}: its linear solution diverges in the segment from "
+        f"{time_s:.1f} s at {_altitude(state) / 1e3:.1f} km, speed {speed:.0f} m/s"
+        + (f" ({problem})" if problem else "")
+        + "; linear theory follows the arc length at a speed frozen per segment, which fails "
+        "where the speed falls toward zero (a near-vertical apogee): the 6DOF flies it"
+    )
+
+
 def simulate_mlt(
     launch: Launch,
     *,
@@ -593,7 +607,7 @@ def simulate_mlt(
     if length_m > longest_m:
         raise ValueError(
             f"segment_length_m = {length_m:g} m is longer than the flight: even "
-            f"without drag it travels at most {longest_m / 1e3:.0f} km"
+            f"without drag it travels at most {longest_m:.4g} m"
         )
     if length_m > MAX_SEGMENT_LENGTH_M:
         warnings.warn(
@@ -616,56 +630,66 @@ def simulate_mlt(
     time, impact, problem = 0.0, False, None
     apogee: tuple | None = None
     lowest_m = math.inf  # since the apogee
-    while time < max_time:
-        segment = _solve_segment(model, state, time, length, coefficients_at, aerodynamics, uniform)
-        problem = problem or _validity_problem(segment, model)
-        if apogee is not None:
-            lowest_m = min(lowest_m, _altitude(segment.start))
-            problem = problem or _climb_problem(segment, model, lowest_m)
-        duration = segment.duration_s(model)
-        end = segment.at(model, length)
-        lands = _altitude(end) < 0.0
-        if lands:
-            if not segments:
-                raise ValueError(
-                    f"segment_length_m = {length_m:g} m is longer than the flight: "
-                    f"{projectile.name} lands inside the first segment"
-                )
-            s_hit = brentq(lambda s: _altitude(segment.at(model, s)), 0.0, length, xtol=1e-9)
-            segment = segment._replace(length=s_hit)
-            end = segment.at(model, s_hit)
-        if abs(end[4] - segment.start[4]) > MAX_PITCH_CHANGE_RAD and not problem:
-            problem = (
-                f"its pitch turns {math.degrees(abs(end[4] - segment.start[4])):.0f} deg within "
-                f"one segment {_where(segment)}, whose speed and coefficients linear theory "
-                "freezes: shorten segment_length_m"
+    try:  # a linear solution that diverges overflows or divides by a vanishing speed
+        while time < max_time:
+            segment = _solve_segment(
+                model, state, time, length, coefficients_at, aerodynamics, uniform
             )
-        if apogee is None and _radial_velocity(segment, end) < 0.0:
-            # The positions are piecewise closed forms whose rotation T (eq L7) is fixed within a
-            # segment and steps at its ends, where the direction of dr/dt turns by the segment's
-            # change of pitch: the highest point is usually a segment boundary (the kink).
-            s_top = (
-                brentq(
-                    lambda s: _radial_velocity(segment, segment.at(model, s)),
-                    0.0,
-                    segment.length,
-                    xtol=1e-9,
+            problem = problem or _validity_problem(segment, model)
+            if apogee is not None:
+                lowest_m = min(lowest_m, _altitude(segment.start))
+                problem = problem or _climb_problem(segment, model, lowest_m)
+            duration = segment.duration_s(model)
+            end = segment.at(model, length)
+            lands = _altitude(end) < 0.0
+            if lands:
+                if not segments:
+                    raise ValueError(
+                        f"segment_length_m = {length_m:g} m is longer than the flight: "
+                        f"{projectile.name} lands inside the first segment"
+                    )
+                s_hit = brentq(lambda s: _altitude(segment.at(model, s)), 0.0, length, xtol=1e-9)
+                segment = segment._replace(length=s_hit)
+                end = segment.at(model, s_hit)
+            if abs(end[4] - segment.start[4]) > MAX_PITCH_CHANGE_RAD and not problem:
+                problem = (
+                    f"its pitch turns {math.degrees(abs(end[4] - segment.start[4])):.0f} deg "
+                    f"within one segment {_where(segment)}, whose speed and coefficients linear "
+                    "theory freezes: shorten segment_length_m"
                 )
-                if _radial_velocity(segment, segment.start) > 0.0
-                else 0.0
-            )
-            apogee = (time + s_top * model.d / segment.coefficients.speed, segment.at(model, s_top))
-        if lands:
+            if apogee is None and _radial_velocity(segment, end) < 0.0:
+                # The positions are piecewise closed forms whose rotation T (eq L7) is fixed
+                # within a segment and steps at its ends, where the direction of dr/dt turns by the
+                # segment's change of pitch: the highest point is usually a segment boundary.
+                s_top = (
+                    brentq(
+                        lambda s: _radial_velocity(segment, segment.at(model, s)),
+                        0.0,
+                        segment.length,
+                        xtol=1e-9,
+                    )
+                    if _radial_velocity(segment, segment.start) > 0.0
+                    else 0.0
+                )
+                apogee = (
+                    time + s_top * model.d / segment.coefficients.speed,
+                    segment.at(model, s_top),
+                )
+            if lands:
+                segments.append(segment)
+                impact = True
+                break
+            if time + duration > max_time:
+                segments.append(
+                    segment._replace(
+                        length=(max_time - time) * segment.coefficients.speed / model.d
+                    )
+                )
+                break
             segments.append(segment)
-            impact = True
-            break
-        if time + duration > max_time:
-            segments.append(
-                segment._replace(length=(max_time - time) * segment.coefficients.speed / model.d)
-            )
-            break
-        segments.append(segment)
-        state, time = end, time + duration
+            state, time = end, time + duration
+    except ArithmeticError as error:
+        raise ValueError(_divergence(launch, time, state, problem)) from error
     if impact and len(segments) < MIN_SEGMENTS and not problem:
         problem = (
             f"the whole flight is {len(segments)} segments of {length_m:g} m, each frozen at "
@@ -680,8 +704,12 @@ def simulate_mlt(
         )
 
     end_time = segments[-1].time_s + segments[-1].duration_s(model)
-    times = np.append(np.arange(0.0, end_time, step), end_time)
+    if not math.isfinite(end_time):
+        raise ValueError(_divergence(launch, time, state, problem))
+    times = output_times(end_time, step)
     frame = trajectory_table(model, times, _states_at(model, segments, times))
+    if not np.isfinite(frame.altitude_m.to_numpy()).all():
+        raise ValueError(_divergence(launch, time, state, problem))
     if np.any(frame.altitude_m.to_numpy()[:-1] < -1.0):
         raise RuntimeError(
             f"the MLT flight of {projectile.name} passes below the ground inside "
