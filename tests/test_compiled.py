@@ -146,3 +146,36 @@ def test_processes_compiling_a_kernel_at_once_compile_it_once(tmp_path):
     assert compiled == [0, 1]
     third = start("ready2")
     assert int(third.communicate(timeout=300)[0]) == 0 and third.returncode == 0
+
+
+def test_numba_s_debugging_switch_runs_the_same_physics_in_python():
+    """NUMBA_DISABLE_JIT=1 (numba's switch for stepping through kernels in a debugger) leaves
+    every kernel a Python function: the engines import and fly the same numbers."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    from harp_analysis import mks
+
+    script = (
+        "import json; from harp_analysis import firing_solver, mks, mks_improved, mlt, sixdof, "
+        "threedof; from harp_analysis.launch import baseline_chapter_4 as b; "
+        "print(json.dumps([mks.simulate_mks(b(45.0)).attrs['apogee_altitude_m'], "
+        "float(threedof.fly_3dof([b(45.0)]).apogee_altitude_m[0])]))"
+    )
+    run = subprocess.run(
+        [sys.executable, "-c", script],
+        env={**os.environ, "NUMBA_DISABLE_JIT": "1"},
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert run.returncode == 0, run.stderr
+    in_python, flown_in_python = json.loads(run.stdout)
+    assert in_python == pytest.approx(
+        mks.simulate_mks(baseline_chapter_4(45.0)).attrs["apogee_altitude_m"], rel=1e-12
+    )
+    compiled_3dof = threedof.fly_3dof([baseline_chapter_4(45.0)]).apogee_altitude_m[0]
+    assert flown_in_python == pytest.approx(compiled_3dof, rel=1e-9)

@@ -137,6 +137,8 @@ def jit(function: F | None = None, *, inline: bool = False) -> Any:
             )
         finally:
             config.CACHE_DIR = previous
+    if config.DISABLE_JIT:  # NUMBA_DISABLE_JIT=1, for debugging: njit returned the function
+        return dispatcher
     # numba compiles through this method at a first call, for a compiled caller and at warm-up
     lock = folder / f"{function.__qualname__}-{function.__code__.co_firstlineno}.lock"
     dispatcher.compile = _under_lock(dispatcher.compile, lock)
