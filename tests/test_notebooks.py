@@ -1,10 +1,12 @@
 """Notebooks are driven from one parameters cell, and every engine flies the launch built there.
 
 nbmake executes every notebook as committed (``make test``); here notebook 04 runs with changed
-parameters, and a last cell checks that the 3DOF, 6DOF, MLT and MKS all flew the changed launch.
+parameters, and a last cell checks that the 3DOF, 6DOF, MLT and MKS all flew the changed launch
+and that the headings name it. No notebook silences the models' validity warnings.
 """
 
 import os
+import re
 
 import nbformat
 import pytest
@@ -61,6 +63,27 @@ def test_notebook_04_flies_every_engine_on_the_changed_launch(tmp_path):
     )
     client.execute(env={**os.environ, "HARP_ANALYSIS_FIGURES_DIR": str(tmp_path)})
     assert (tmp_path / "fig_4_1.png").is_file()
+    shown = [
+        output.data["text/markdown"]
+        for cell in notebook.cells
+        for output in cell.get("outputs", [])
+        if "text/markdown" in output.get("data", {})
+    ]
+    headings = [line for text in shown for line in text.splitlines() if line.startswith("## ")]
+    assert headings == [
+        "## Figures 4.1 to 4.4: LP at 60 deg",
+        "## Figure 4.5: the geometry of the total position error, drawn from LP at apogee",
+        "## Figure 4.6: total position error of LP against the 3DOF, 1 to 5 series terms",
+    ]
+    assert any("in the -3 m/s cross wind" in text for text in shown)
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
+def test_no_notebook_silences_warnings(path):
+    """A model used outside its validity warns, and the reader sees it (issue 25)."""
+    silencing = re.compile(r"(simplefilter|filterwarnings)\(\s*[\"']ignore")
+    for cell in nbformat.read(path, as_version=4).cells:
+        assert cell.cell_type != "code" or not silencing.search(cell.source), cell.source
 
 
 def test_figures_go_to_a_scratch_folder_unless_asked(monkeypatch):
