@@ -22,11 +22,15 @@ cannot drift from the computation (:func:`ClaimResult.explanation`).
 A claim that is a bound ("less than 1 %", "over 4 degrees") sets ``bound = "upper"`` or
 ``"lower"``: only a computed value on the wrong side of the text's counts as a deviation.
 
+Every row names the figures and tables it speaks about, ``figures = ["4.7", "Table 4.1",
+"X.5"]`` (required; empty for a row no figure draws): those its ``source`` cites and those the
+text's paragraph it comes from discusses (tests/test_ledger.py checks both), so a figure's
+status answers to every row about it, unfavourable ones included.
+
 Every row also carries ``expected = [low, high]``, the range its computed value is expected to
 stay in whatever the verdict (:func:`range_problem`): a regression guard, so a change that moves
 a value that does not reproduce is caught too. Optional: ``digits`` (significant digits
-CLAIMS.md prints, :func:`printed_digits`) and ``ties`` (the figures the row is about, where not
-those its ``source`` names; empty for a row that scores a model a figure does not draw).
+CLAIMS.md prints, :func:`printed_digits`).
 """
 
 from __future__ import annotations
@@ -66,6 +70,7 @@ _REQUIRED = (
     "tolerance",
     "verdict",
     "explanation",
+    "figures",
 )
 
 
@@ -80,6 +85,7 @@ class Claim:
     tolerance: float
     verdict: str
     explanation: str
+    figures: tuple[str, ...]  # the figures and tables it is about (see the module docstring)
     tolerance_kind: str = "absolute"
     close_tolerance: float | None = None
     kwargs: dict = field(default_factory=dict, hash=False)
@@ -88,15 +94,7 @@ class Claim:
     bound: str | None = None
     digits: int | None = None  # significant digits CLAIMS.md prints; default: what the
     # tolerance resolves, 3 to 6 (see printed_digits)
-    ties: tuple[str, ...] | None = None  # the figures it is about, where not its source's
     expected: tuple[float, float] | None = None  # the range the computed value must stay in
-
-    @property
-    def figures(self) -> tuple[str, ...]:
-        """The figures and tables the claim is about: ``ties`` if given (empty for a row that
-        scores another model than the one a figure draws), else read from its ``source``
-        ("Fig 6.5", "Figs 4.11, 4.15", "Figs 5.4-5.9", "Table 4.1")."""
-        return tuple(_figures_in(self.source)) if self.ties is None else tuple(self.ties)
 
 
 _QUOTE = re.compile(r"<<([A-Za-z_][\w.]*)(?::([^>]*))?>>")
@@ -145,20 +143,6 @@ class ClaimResult:
         return self.deviation <= self.claim.tolerance
 
 
-_FIGURE_LIST = re.compile(r"Figs?\.?\s+((?:\d+\.\d+(?:\s*-\s*\d+\.\d+)?(?:,\s*|\s+and\s+)?)+)")
-
-
-def _figures_in(source: str) -> list[str]:
-    numbers = ["Table 4.1"] if "Table 4.1" in source else []
-    for listed in _FIGURE_LIST.findall(source):
-        for item in re.split(r",\s*|\s+and\s+", listed.strip(", ")):
-            first, _, last = item.partition("-")
-            chapter, start = first.strip().split(".")
-            end = last.strip().split(".")[1] if last else start
-            numbers += [f"{chapter}.{n}" for n in range(int(start), int(end) + 1)]
-    return numbers
-
-
 def _claim(raw: dict, position: int, source: Path) -> Claim:
     where = f"{source.name} claim {raw.get('id', '?')!r}"
     missing = [name for name in _REQUIRED if name not in raw]
@@ -175,8 +159,10 @@ def _claim(raw: dict, position: int, source: Path) -> Claim:
         raise ValueError(f"{where}: bound must be 'upper' or 'lower'")
     if ":" not in raw["compute"]:
         raise ValueError(f"{where}: compute must read 'module:function', got {raw['compute']!r}")
-    if "ties" in raw:
-        raw = {**raw, "ties": tuple(raw["ties"])}
+    figures = raw["figures"]
+    if not isinstance(figures, list) or not all(isinstance(f, str) for f in figures):
+        raise ValueError(f"{where}: figures must be a list of figure numbers such as \"4.7\"")
+    raw = {**raw, "figures": tuple(figures)}
     if "expected" in raw:
         low_high = raw["expected"]
         if (
