@@ -227,6 +227,25 @@ def test_site_difference_p_value_is_welchs(quantity):
     )
 
 
+@pytest.mark.parametrize("margin_m", [300.0, 1000.0, 5000.0])
+def test_site_equivalence_is_the_two_one_sided_welch_tests(margin_m):
+    """TOST by hand: Welch's t against a difference of -margin and of +margin, each one-sided;
+    the larger p. A wide margin shows equivalence, a narrow one cannot."""
+    samples = []
+    for site in ("barbados", "yuma"):
+        frame = harp.predicted_apogees(site)
+        samples.append(frame.residual_m[~frame.duplicate_of_earlier_row].to_numpy())
+    (a, b) = samples
+    va, vb = a.var(ddof=1) / a.size, b.var(ddof=1) / b.size
+    dof = (va + vb) ** 2 / (va**2 / (a.size - 1) + vb**2 / (b.size - 1))
+    difference, se = a.mean() - b.mean(), math.sqrt(va + vb)
+    p_above = stats.t.sf((difference + margin_m) / se, dof)
+    p_below = stats.t.cdf((difference - margin_m) / se, dof)
+    p = harp.site_equivalence_p_value("residual", margin=margin_m)
+    assert p == pytest.approx(max(p_above, p_below), rel=1e-9)
+    assert (p < 0.05) is (margin_m == 5000.0)
+
+
 def test_bearings_temperatures_and_splash():
     assert harp.bearing_from_east_deg("barbados") == pytest.approx(19.0)
     assert harp.bearing_from_east_deg() == pytest.approx(19.0)

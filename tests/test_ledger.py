@@ -4,7 +4,7 @@ import re
 
 import pytest
 
-from harp_analysis import ledger, registry
+from harp_analysis import comparisons, harp_rounds, ledger, registry, rotating
 
 CLAIMS = ledger.load_claims()
 
@@ -62,6 +62,15 @@ explanation = "{explanation}"
         (2.0, "close", "because", "close_tolerance = 0.2", False),  # further than close
         (2.0, "does not reproduce", "because", "", True),
         (1.0, "does not reproduce", "because", "", False),  # stale verdict
+        (1.0, "recovered", "", 'fitted_to = "the text\'s 1"', True),
+        (1.0, "reproduces", "", 'fitted_to = "the text\'s 1"', False),  # a fit is no proof
+        (1.0, "recovered", "", "", False),  # recovered from what?
+        (1.1, "recovered", "", 'fitted_to = "the text\'s 1"', False),  # the fit misses
+        (1.009, "close", "because", "margin = 0.005", True),  # straddles the edge
+        (1.009, "reproduces", "", "margin = 0.005", False),
+        (1.011, "does not reproduce", "because", "margin = 0.005", False),
+        (1.02, "does not reproduce", "because", "margin = 0.005", True),
+        (1.02, "close", "because", "margin = 0.005", False),  # past the edge, margin and all
     ],
 )
 def test_verdict_rules(tmp_path, x, verdict, explanation, extra, ok):
@@ -208,3 +217,47 @@ def test_explanations_quote_the_computation_and_name_what_it_lacks(tmp_path):
     result = ledger.evaluate(ledger.load_claims(_write(tmp_path / "b", lacking))[0])
     with pytest.raises(ValueError, match="numerators"):
         _ = result.explanation
+
+
+def _range_km(values) -> str:
+    return f"{min(values):.1f}-{max(values):.0f} km"
+
+
+#: Numbers typed into explanations that no <<quote>> can reach (they come from another
+#: computation than the row's), each with the computation that must still print them.
+_TYPED = [
+    (
+        "ch6.round181.range",
+        "36.5 km",
+        lambda: f"{harp_rounds.splash_range_km(model='consistent'):.1f} km",
+    ),
+    (
+        "ch6.round181.range",
+        "18.6 km",
+        lambda: f"{harp_rounds.splash_range_km(model='printed_columns'):.1f} km",
+    ),
+    (
+        "ch5.worst_error_high_elevations",
+        "0.4-11 km",
+        lambda: _range_km(rotating.errors_at_apogee_km(decay="printed").values()),
+    ),
+    (
+        "ch4.momentum_from_apogee_better",
+        "0.14-0.68",
+        lambda: "{:.2f}-{:.2f}".format(
+            *sorted(
+                comparisons.error_ratio("momentum_from_apogee", e)
+                for e in comparisons.BASELINE_ELEVATIONS_DEG
+            )[:: len(comparisons.BASELINE_ELEVATIONS_DEG) - 1]
+        ),
+    ),
+]
+
+
+@pytest.mark.parametrize("row, typed, compute", _TYPED, ids=[f"{r}:{t}" for r, t, _ in _TYPED])
+def test_numbers_typed_into_explanations_hold(row, typed, compute):
+    """Issue 26: explanations had drifted from the computations they quote (36.6 / 18.8 km for
+    36.5 / 18.6, '4-11 km' for 0.4-11, 0.25 for 0.26, 0.15 for 0.14)."""
+    (claim,) = [c for c in CLAIMS if c.id == row]
+    assert typed in claim.explanation
+    assert compute() == typed

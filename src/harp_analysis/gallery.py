@@ -42,13 +42,16 @@ def _rows(results: list[ClaimResult], only_deviating: bool = False) -> str:
 
 def status_problems() -> list[str]:
     """Where a registry status disagrees with the ledger rows about the figure: "reproduced"
-    with a row that does not reproduce, or "deviates" with none."""
+    with a row that does not reproduce (a recovered row does not: it agrees by construction),
+    or "deviates" with none."""
     tied = claims_by_figure()
     problems = []
     for entry in load_registry():
         deviating = [r for r in tied.get(entry.number, []) if r.claim.verdict != "reproduces"]
         if entry.status == "reproduced" and deviating:
-            problems.append(f"{entry.label} is 'reproduced' but {_rows(deviating)} deviate")
+            problems.append(
+                f"{entry.label} is 'reproduced' but {_rows(deviating)} do not reproduce"
+            )
         if entry.status == "deviates" and not deviating:
             problems.append(f"{entry.label} is 'deviates' but no ledger row about it deviates")
     return problems

@@ -457,6 +457,7 @@ def column_agreement(site: str, model: str = "dissertation") -> pd.DataFrame:
 __all__ += [
     "round_count",
     "site_difference_p_value",
+    "site_equivalence_p_value",
     "bearing_from_east_deg",
     "mach_column_temperature_difference_k",
     "splash_error",
@@ -469,12 +470,9 @@ def round_count(site: str, distinct: bool = True) -> int:
     return int(len(_distinct(table)) if distinct else len(table))
 
 
-def site_difference_p_value(quantity: str = "residual", model: str = "dissertation") -> float:
-    """Two-sided p-value of Welch's t-test that the Barbados and Yuma means are equal, over the
-    distinct rounds: the apogee residuals under ``model`` (``quantity="residual"``) or the
-    recovered muzzle speeds (``"muzzle_speed"``). A small value says the sites differ."""
-    from scipy.stats import ttest_ind
-
+def _site_samples(quantity: str, model: str) -> list[np.ndarray]:
+    """Barbados' and Yuma's distinct rounds: apogee residuals under ``model`` (m) or recovered
+    muzzle speeds (m/s)."""
     check_choice(quantity, "quantity", ("residual", "muzzle_speed"))
     samples = []
     for site in ("barbados", "yuma"):
@@ -483,7 +481,39 @@ def site_difference_p_value(quantity: str = "residual", model: str = "dissertati
             samples.append(frame.residual_m[~frame.duplicate_of_earlier_row].to_numpy())
         else:
             samples.append(_distinct(appendix_rounds(site)).muzzle_speed_m_s.to_numpy())
-    return float(ttest_ind(*samples, equal_var=False).pvalue)
+    return samples
+
+
+def site_difference_p_value(quantity: str = "residual", model: str = "dissertation") -> float:
+    """Two-sided p-value of Welch's t-test that the Barbados and Yuma means are equal, over the
+    distinct rounds: the apogee residuals under ``model`` (``quantity="residual"``) or the
+    recovered muzzle speeds (``"muzzle_speed"``). A small value says the sites differ; a large
+    one does not say they agree (:func:`site_equivalence_p_value` does)."""
+    from scipy.stats import ttest_ind
+
+    return float(ttest_ind(*_site_samples(quantity, model), equal_var=False).pvalue)
+
+
+def site_equivalence_p_value(
+    quantity: str = "residual",
+    *,
+    margin: float,
+    relative: bool = False,
+    model: str = "dissertation",
+) -> float:
+    """p-value of the two one-sided Welch tests (TOST) that the Barbados and Yuma means differ
+    by less than ``margin`` (m or m/s; a share of the two sites' mean if ``relative``): the
+    larger of the p-values against a difference of -margin and of +margin. A small value shows
+    the sites equivalent within the margin, which no test of a difference can."""
+    from scipy.stats import ttest_ind
+
+    barbados, yuma = _site_samples(quantity, model)
+    width = check_range(real_number(margin, "margin"), "margin", low=0.0, low_inclusive=False)
+    if relative:
+        width *= abs(np.mean(np.concatenate([barbados, yuma])))
+    above = ttest_ind(barbados + width, yuma, equal_var=False, alternative="greater").pvalue
+    below = ttest_ind(barbados - width, yuma, equal_var=False, alternative="less").pvalue
+    return float(max(above, below))
 
 
 def bearing_from_east_deg(site: str | None = None) -> float:

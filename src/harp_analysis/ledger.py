@@ -10,7 +10,17 @@ numbers (:func:`verdict_problems`), so a verdict cannot silently go stale:
 - ``reproduces``: the computed value is within ``tolerance`` of the text's;
 - ``close``: outside ``tolerance`` but within ``close_tolerance``, with an explanation;
 - ``does not reproduce``: outside ``close_tolerance`` (or ``tolerance`` if none), with an
-  explanation.
+  explanation;
+- ``recovered``: within ``tolerance``, but of a value the project fitted to the very number it
+  is scored against (a drag area fitted to Appendix E's Error column, then Appendix E's mean
+  error; a speed of sound fitted to a Mach column, then that column): the row says what was
+  fitted in ``fitted_to``, and such a row can never read ``reproduces``. A fit that misses its
+  own target reads ``close`` or ``does not reproduce`` as any row.
+
+A value known only to within ``margin`` (a count that rounding moves by a few per cent, a
+statistic of data printed in coarse steps) reproduces only if it does so across the margin,
+and fails only if it fails across it: a value within ``margin`` of a tolerance's edge is
+``close``, whichever side it falls.
 
 Tolerances are absolute in the row's unit, or relative when ``tolerance_kind = "relative"``.
 An explanation may quote the computation's own numbers instead of typing them: ``<<name>>`` or
@@ -59,7 +69,7 @@ __all__ = [
     "VERDICTS",
 ]
 
-VERDICTS = ("reproduces", "close", "does not reproduce")
+VERDICTS = ("reproduces", "recovered", "close", "does not reproduce")
 _REQUIRED = (
     "id",
     "source",
@@ -92,6 +102,8 @@ class Claim:
     field: str | None = None
     scale: float = 1.0
     bound: str | None = None
+    fitted_to: str | None = None  # what the project fitted to the number scored (recovered)
+    margin: float = 0.0  # how far the computed value is known, in the tolerance's terms
     digits: int | None = None  # significant digits CLAIMS.md prints; default: what the
     # tolerance resolves, 3 to 6 (see printed_digits)
     expected: tuple[float, float] | None = None  # the range the computed value must stay in
@@ -161,7 +173,7 @@ def _claim(raw: dict, position: int, source: Path) -> Claim:
         raise ValueError(f"{where}: compute must read 'module:function', got {raw['compute']!r}")
     figures = raw["figures"]
     if not isinstance(figures, list) or not all(isinstance(f, str) for f in figures):
-        raise ValueError(f"{where}: figures must be a list of figure numbers such as \"4.7\"")
+        raise ValueError(f'{where}: figures must be a list of figure numbers such as "4.7"')
     raw = {**raw, "figures": tuple(figures)}
     if "expected" in raw:
         low_high = raw["expected"]
@@ -214,32 +226,39 @@ def verdict_problems(result: ClaimResult) -> list[str]:
     claim, problems = result.claim, []
     if not math.isfinite(result.computed):
         return [f"computed value is {result.computed}"]
-    if claim.verdict == "reproduces":
-        if not result.within_tolerance:
+    low, high = result.deviation - claim.margin, result.deviation + claim.margin
+    close = claim.tolerance if claim.close_tolerance is None else claim.close_tolerance
+    if claim.fitted_to and claim.verdict == "reproduces":
+        problems.append(f"fitted to {claim.fitted_to}: a value fitted to its target is 'recovered'")
+    if claim.verdict == "recovered" and not claim.fitted_to:
+        problems.append("verdict 'recovered' needs fitted_to: what was fitted to the number")
+    if claim.verdict in ("reproduces", "recovered"):
+        if high > claim.tolerance:
+            margin = f" (with its margin {claim.margin:g})" if claim.margin else ""
             problems.append(
-                f"marked 'reproduces' but deviates by {result.deviation:.4g} "
+                f"marked {claim.verdict!r} but deviates by {result.deviation:.4g}{margin} "
                 f"> tolerance {claim.tolerance:g}"
             )
         return problems
     if not claim.explanation.strip():
         problems.append(f"verdict {claim.verdict!r} needs an explanation")
-    if result.within_tolerance:
+    if high <= claim.tolerance:
         problems.append(
             f"marked {claim.verdict!r} but is within tolerance "
             f"({result.deviation:.4g} <= {claim.tolerance:g}): it reproduces"
         )
     if claim.verdict == "close":
-        if claim.close_tolerance is None:
-            problems.append("verdict 'close' needs a close_tolerance")
-        elif result.deviation > claim.close_tolerance:
+        if claim.close_tolerance is None and not claim.margin:
+            problems.append("verdict 'close' needs a close_tolerance or a margin")
+        elif low > close:
             problems.append(
-                f"marked 'close' but deviates by {result.deviation:.4g} "
-                f"> close_tolerance {claim.close_tolerance:g}"
+                f"marked 'close' but deviates by {result.deviation:.4g} > close tolerance {close:g}"
             )
-    elif claim.close_tolerance is not None and result.deviation <= claim.close_tolerance:
+    elif (claim.close_tolerance is not None or claim.margin) and low <= close:
         problems.append(
-            f"marked 'does not reproduce' but is within close_tolerance "
-            f"{claim.close_tolerance:g}: it is close"
+            f"marked 'does not reproduce' but is within close tolerance {close:g}"
+            + (f" of its margin {claim.margin:g}" if claim.margin else "")
+            + ": it is close"
         )
     return problems
 
@@ -273,15 +292,50 @@ _VERDICT_DEFINITIONS = (
     "why it differs.",
     "- **does not reproduce**: outside the close tolerance (or the tolerance, where there is "
     "none); the explanation gives the best reason found.",
+    "- **recovered**: within the tolerance, of a value fitted to the very number it is scored "
+    "against (shown apart, below): evidence that the fit holds, not that the text reproduces.",
+    "",
+    "A value known only to within a margin (listed in its explanation) counts as close where the "
+    "margin straddles a tolerance's edge.",
 )
 
 
+_TABLE_HEAD = (
+    "| id | source | statement | text | computed | unit | tolerance | close tolerance "
+    "| expected range | verdict | explanation |",
+    "|---|---|---|---|---|---|---|---|---|---|---|",
+)
+
+
+def _table_row(r: ClaimResult) -> str:
+    c = r.claim
+
+    def tolerance(value):
+        if value is None:
+            return "-"
+        return f"{value:g}" if c.tolerance_kind == "absolute" else f"{value:.2%} rel."
+
+    text = {"upper": "< ", "lower": "> "}.get(c.bound or "", "") + _number(c.text_value)
+    expected = f"[{c.expected[0]:g}, {c.expected[1]:g}]" if c.expected else "-"
+    margin = f" (margin {c.margin:g})" if c.margin else ""
+    fitted = f"Fitted to {c.fitted_to}. " if c.fitted_to else ""
+    return (
+        f'| <a id="{c.id}"></a>`{c.id}` | {_cell(c.source)} | {_cell(c.statement)} | '
+        f"{text} | {_number(r.computed, printed_digits(r))}{margin} | {_cell(c.unit)} | "
+        f"{tolerance(c.tolerance)} | {tolerance(c.close_tolerance)} | {expected} | "
+        f"**{c.verdict}** | {_cell(fitted + r.explanation)} |"
+    )
+
+
 def render_claims(target: Path | None = None) -> Path:
-    """Write ``figures/CLAIMS.md``: the ledger evaluated now, as a readable table. Computed
-    values are printed to the digits they can defend (:func:`printed_digits`)."""
+    """Write ``figures/CLAIMS.md``: the ledger evaluated now, as readable tables, the recovered
+    rows apart from the rest. Computed values are printed to the digits they can defend
+    (:func:`printed_digits`)."""
     target = Path(target) if target else paths.FIGURES_DIR / "CLAIMS.md"
     results = evaluate_all()
     counts = {v: sum(r.claim.verdict == v for r in results) for v in VERDICTS}
+    scored = [r for r in results if r.claim.verdict != "recovered"]
+    recovered = [r for r in results if r.claim.verdict == "recovered"]
     lines = [
         "# Claims ledger: the dissertation's numbers, recomputed",
         "",
@@ -291,29 +345,21 @@ def render_claims(target: Path | None = None) -> Path:
         "",
         *_VERDICT_DEFINITIONS,
         "",
-        ", ".join(f"{n} {verdict}" for verdict, n in counts.items()) + f" ({len(results)} in all).",
+        f"{len(scored)} rows scored against the text: "
+        + ", ".join(f"{counts[v]} {v}" for v in VERDICTS if v != "recovered")
+        + f"; {counts['recovered']} recovered, apart below ({len(results)} in all).",
         "",
-        "| id | source | statement | text | computed | unit | tolerance | close tolerance "
-        "| expected range | verdict | explanation |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        *_TABLE_HEAD,
+        *map(_table_row, scored),
+        "",
+        "## Recovered: values fitted to the number they are scored against",
+        "",
+        "Each of these agrees with the text because the project fitted one of its inputs to it; "
+        "they show the fit holds, not that the text reproduces.",
+        "",
+        *_TABLE_HEAD,
+        *map(_table_row, recovered),
     ]
-    for r in results:
-        c = r.claim
-
-        def tolerance(value, c=c):
-            if value is None:
-                return "-"
-            return f"{value:g}" if c.tolerance_kind == "absolute" else f"{value:.2%} rel."
-
-        text = {"upper": "< ", "lower": "> "}.get(c.bound or "", "") + _number(c.text_value)
-        expected = f"[{c.expected[0]:g}, {c.expected[1]:g}]" if c.expected else "-"
-        lines.append(
-            f'| <a id="{c.id}"></a>`{c.id}` | {_cell(c.source)} | {_cell(c.statement)} | '
-            f"{text} | {_number(r.computed, printed_digits(r))} | {_cell(c.unit)} | "
-            f"{tolerance(c.tolerance)} | {tolerance(c.close_tolerance)} | {expected} | "
-            f"**{c.verdict}** | "
-            f"{_cell(r.explanation)} |"
-        )
     text = "\n".join(lines) + "\n"
     return paths.write_atomically(target, lambda path: path.write_text(text))
 

@@ -114,12 +114,12 @@ def error_at_apogee_km(
 
 
 def errors_at_apogee_km(
-    atmosphere: str = "two_segment", min_elevation_deg: float = 0.0
+    atmosphere: str = "two_segment", min_elevation_deg: float = 0.0, decay: str = "consistent"
 ) -> dict[tuple[float, float, float], float]:
     """Error at apogee (km) of every case at or above ``min_elevation_deg``, keyed by
-    (latitude, bearing, elevation) in degrees."""
+    (latitude, bearing, elevation) in degrees, with the ECI MKS's ``decay`` (:func:`case`)."""
     return {
-        (lat, brg, el): error_at_apogee_km(lat, brg, el, atmosphere=atmosphere)
+        (lat, brg, el): error_at_apogee_km(lat, brg, el, decay=decay, atmosphere=atmosphere)
         for lat in LATITUDES_DEG
         for brg in BEARINGS_DEG
         for el in ELEVATIONS_DEG
