@@ -19,6 +19,9 @@ Models (:data:`harp_analysis.eci.MODELS`), each with the drag area it fits itsel
   (:func:`fit_drag_area_to_errors`), used unchanged at Barbados as the text says. It is the
   default because Figs 6.5 and 6.6 and the text's statistics are this model's results: a
   reproduction draws what the dissertation computed, and the other models are compared with it.
+  Every other reading of the three choices that set its predictions (eq 5.8's sine, tau's
+  elevation, eq 5.3's V), each fitted to the same column, and which of them Appendix E tells
+  apart: :mod:`.harp_identification`.
 - ``"consistent"``: the project's reading (eqs 5.8 and 6.11-6.15 as printed, the decay made
   consistent with eq 3.23), Cd0 A from Appendix D's Beta column read as eq 6.11 at the launch
   elevation of the same model.
