@@ -19,6 +19,9 @@ Models (:data:`harp_analysis.eci.MODELS`), each with the drag area it fits itsel
   (:func:`fit_drag_area_to_errors`), used unchanged at Barbados as the text says. It is the
   default because Figs 6.5 and 6.6 and the text's statistics are this model's results: a
   reproduction draws what the dissertation computed, and the other models are compared with it.
+  Every other reading of the three choices that set its predictions (eq 5.8's sine, tau's
+  elevation, eq 5.3's V), each fitted to the same column, and which of them Appendix E tells
+  apart: :mod:`.harp_identification`.
 - ``"consistent"``: the project's reading (eqs 5.8 and 6.11-6.15 as printed, the decay made
   consistent with eq 3.23), Cd0 A from Appendix D's Beta column read as eq 6.11 at the launch
   elevation of the same model.
@@ -234,24 +237,29 @@ def beta_column_drag_area(
     return float(best), math.nan, math.nan
 
 
-def _yuma_error_misfit_m(drag_area):
-    predicted = predicted_apogees("yuma", "dissertation", drag_area)
+def _yuma_error_misfit_m(drag_area, model):
+    predicted = predicted_apogees("yuma", model, drag_area)
     return (predicted.residual_m - predicted.printed_error_m).to_numpy()
 
 
 @cache
-def fit_drag_area_to_errors() -> tuple[float, float, float]:
-    """Cd0 A (m^2) that Appendix E's Error column implies through the dissertation model:
-    (least squares, lowest, highest value keeping every Yuma round within 0.02 km)."""
+def fit_drag_area_to_errors(
+    model: str | eci.EciModel = "dissertation",
+) -> tuple[float, float, float]:
+    """Cd0 A (m^2) that Appendix E's Error column implies through ``model`` (the dissertation
+    model's own, or any other reading of the open choices, :mod:`.harp_identification`):
+    (least squares, lowest, highest value keeping every Yuma round within 0.02 km; NaN bounds
+    when no Cd0 A does)."""
+    model = eci.get_model(model)
     best = minimize_scalar(
-        lambda area: np.sum(_yuma_error_misfit_m(area) ** 2),
+        lambda area: np.sum(_yuma_error_misfit_m(area, model) ** 2),
         bounds=(2.0e-3, 4.0e-3),
         method="bounded",
         options={"xatol": 1e-11},
     ).x
 
     def margin(area):
-        return np.max(np.abs(_yuma_error_misfit_m(area))) - _TOLERANCE_KM * 1e3
+        return np.max(np.abs(_yuma_error_misfit_m(area, model))) - _TOLERANCE_KM * 1e3
 
     if margin(best) > 0:
         return float(best), math.nan, math.nan
@@ -263,7 +271,7 @@ def fit_drag_area_to_errors() -> tuple[float, float, float]:
     )
 
 
-def drag_area_m2(model: str = "dissertation") -> float:
+def drag_area_m2(model: str | eci.EciModel = "dissertation") -> float:
     """The Martlet's Cd0 A (m^2) each model predicts with (module docstring): the dissertation
     model's from Appendix E's Error column, the others' from Appendix D's Beta column."""
     return _drag_area_m2(eci.get_model(model).name)
@@ -344,14 +352,16 @@ def _predicted(site, model, drag_area):
 
 
 def predicted_apogees(
-    site: str, model: str = "dissertation", drag_area: float | None = None
+    site: str, model: str | eci.EciModel = "dissertation", drag_area: float | None = None
 ) -> pd.DataFrame:
     """Measured and predicted apogee (eqs 6.4-6.5) of every printed row of ``site``'s appendix
     (the duplicated Barbados round 181 kept and flagged), residual = measured - predicted, and
-    for Yuma the printed Error. ``model`` names one of :data:`eci.MODELS`; ``drag_area`` (Cd0 A,
-    m^2) defaults to the model's own (:func:`drag_area_m2`). A copy."""
-    name = eci.get_model(model).name
-    return _predicted(get_site(site).name.lower(), name, _check_drag_area(drag_area))
+    for Yuma the printed Error. ``model`` names one of :data:`eci.MODELS` or is an
+    :class:`eci.EciModel`; ``drag_area`` (Cd0 A, m^2) defaults to a named model's own
+    (:func:`drag_area_m2`). A copy."""
+    return _predicted(
+        get_site(site).name.lower(), eci.get_model(model), _check_drag_area(drag_area)
+    )
 
 
 def residual_statistic(

@@ -77,15 +77,20 @@ def _round_row(site, round_number):
 
 
 def round_trajectory(
-    site: str, round_number: int, n_points: int = 400, *, model: str = "dissertation"
+    site: str,
+    round_number: int,
+    n_points: int = 400,
+    *,
+    model: str | eci.EciModel = "dissertation",
+    drag_area_m2: float | None = None,
 ) -> pd.DataFrame:
     """The ECI MKS of ``round_number`` fired from ``site``, launch to impact at ``n_points``
     equal steps of angular range: ``time_s``, ``altitude_m``, ``inertial_range_m`` (R theta),
     and on the rotating Earth ``ground_range_m`` (surface arc from the gun), ``downrange_m`` and
     ``cross_range_m`` (along and right of the gun bearing) and ``radar_range_m`` (= the ground
-    range; module docstring). ``model`` and its Cd0 A as in :func:`harp.predicted_apogees`,
-    whose default it shares; the round flies its recovered exact muzzle speed. ValueError for a
-    round not in the site's appendix."""
+    range; module docstring). ``model`` and its Cd0 A (or ``drag_area_m2``) as in
+    :func:`harp.predicted_apogees`, whose default it shares; the round flies its recovered exact
+    muzzle speed. ValueError for a round not in the site's appendix."""
     n_points = whole_number(n_points, "n_points", low=2, high=MAX_ROWS)
     launch_site, _, row = _round_row(site, round_number)
     correction = eci.launch_correction(
@@ -93,7 +98,7 @@ def round_trajectory(
         launch_site.elevation_rad,
         launch_site.gun_bearing_rad,
         launch_site.latitude_rad,
-        drag_area_m2=harp.drag_area_m2(model),
+        drag_area_m2=harp.drag_area_m2(model) if drag_area_m2 is None else drag_area_m2,
         mass_kg=row.mass_kg,
         surface_density_kg_m3=launch_site.surface_density_kg_m3,
         model=model,
@@ -129,12 +134,16 @@ def round_trajectory(
 
 
 def splash_range_km(
-    site: str = "barbados", round_number: int = 181, model: str = "dissertation"
+    site: str = "barbados",
+    round_number: int = 181,
+    model: str | eci.EciModel = "dissertation",
+    drag_area_m2: float | None = None,
 ) -> float:
     """Ground range (km) on the rotating Earth at the MKS impact of ``round_number`` under
-    ``model``; for Barbados round 181 the text gives 39.6 km (MKS) and 41.1 km (observed
-    splash); module docstring."""
-    return float(round_trajectory(site, round_number, model=model).ground_range_m.iloc[-1]) / _KM
+    ``model`` with its Cd0 A (or ``drag_area_m2``); for Barbados round 181 the text gives
+    39.6 km (MKS) and 41.1 km (observed splash); module docstring."""
+    trajectory = round_trajectory(site, round_number, model=model, drag_area_m2=drag_area_m2)
+    return float(trajectory.ground_range_m.iloc[-1]) / _KM
 
 
 # --- radar tracks --------------------------------------------------------------------------------
