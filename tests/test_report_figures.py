@@ -1,5 +1,5 @@
 """What the figures of Chapters 5-6 and the project's extensions show, on constructed inputs:
-each drawn 6.5 in wide with nothing outside it, Fig 5.4-5.9's labels on their own curves,
+each drawn 6.5 in wide with nothing outside it, Fig 5.4-5.9's labels beside their own curves,
 Figure X.3's zeros and input sizes, X.5's open-marker rule in both panels, X.6's launches
 beyond the MKS's validity and X.7's sign where the improved MKS is farther."""
 
@@ -32,19 +32,26 @@ def _markers(ax, marker):
     ]
 
 
-def test_labels_sit_on_their_own_curves():
-    """Two crossing curves: each label is centred on a point of its own curve, farther from the
-    other curve than from its own (a label cannot be read as the other's)."""
+def test_labels_sit_beside_their_own_curves():
+    """Two crossing curves: each label's box crosses no curve, and its own curve is nearer
+    than the other by far (a label cannot be read as the other's)."""
     fig, ax = new_figure()
     x = np.linspace(0.0, 10.0, 200)
     lines = [ax.plot(x, x)[0], ax.plot(x, 10.0 - x)[0]]
     ax.set_xlim(0, 10)
     ax.set_ylim(0, 10)
-    texts = rotating_figures.label_on_curves(ax, lines, ["rising", "falling"])
+    fig.canvas.draw()
+    texts = rotating_figures.label_beside_curves(ax, lines, ["rising", "falling"])
+    renderer = fig.canvas.get_renderer()
     for text, own, other in zip(texts, lines, lines[::-1]):
+        box = text.get_window_extent(renderer)
+        for line in lines:
+            path = line.get_transform().transform_path(line.get_path())
+            assert not path.intersects_bbox(box, filled=False)
         px, py = text.get_position()
-        assert np.min(np.hypot(own.get_xdata() - px, own.get_ydata() - py)) < 1e-9
-        assert np.min(np.hypot(other.get_xdata() - px, other.get_ydata() - py)) > 2.0
+        near_own = np.min(np.hypot(own.get_xdata() - px, own.get_ydata() - py))
+        near_other = np.min(np.hypot(other.get_xdata() - px, other.get_ydata() - py))
+        assert near_own < 0.5 * near_other
 
 
 def test_off_scale_mark_is_no_elevation_marker():

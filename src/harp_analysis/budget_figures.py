@@ -90,7 +90,6 @@ def _zero_at_the_edge(ax, values_km: np.ndarray) -> float:
         return "0" if np.isclose(value, zero_at) else default(value, position)
 
     ax.xaxis.set_major_formatter(FuncFormatter(label))
-    ax.axvline(zero_at * 10**0.5, color=OKABE_ITO["grey"], lw=0.8, ls=(0, (2, 2)))
     break_mark = blended_transform_factory(ax.transData, ax.transAxes)
     ax.text(zero_at * 10**0.5, 0.0, "//", transform=break_mark, ha="center", va="center",
             fontsize=9, backgroundcolor="white", clip_on=False)  # fmt: skip

@@ -4,7 +4,7 @@ The schematics (Figs 5.1-5.3, 5.10, 5.11) draw the computed launch vectors in to
 north) and side (east, up) views, km/s; each vector has one look in every schematic, black or
 dark grey with a line style of its own (no model's colour: they are not models), so they read
 in grey. Figs 5.4-5.9 draw the ECI MKS's distance from the rotating-Earth 3DOF at equal time,
-one curve per gun elevation in the house's elevation shades, each labelled on the curve itself.
+one curve per gun elevation in the house's elevation shades, each labelled beside itself.
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import FancyArrowPatch
+from matplotlib.transforms import Bbox
 
 from . import rotating
 from .eci import LaunchCorrection
@@ -30,7 +31,7 @@ __all__ = [
     "draw_east_west",
     "TOP_KM",
     "draw_distance_at_equal_time",
-    "label_on_curves",
+    "label_beside_curves",
 ]
 
 _DARK_GREY = "#4D4D4D"  # a vector that is neither a model nor a measurement
@@ -215,41 +216,52 @@ def draw_east_west(shot: Launch, correction: LaunchCorrection):
     return fig
 
 
-def label_on_curves(ax, lines, labels, obstacles_px=(), *, fontsize: float = 8.5) -> list:
-    """Label each of ``lines`` on the curve itself (the text centred on one of its points, on a
-    white patch that interrupts it), at the point inside the axes farthest from every other
-    curve, from ``obstacles_px`` (display points, e.g. markers) and from the labels already
-    placed: a label cannot be read as another curve's. Returns the texts. Call it once the
-    axes' limits are set."""
-    to_pixels = ax.transData.transform
-    curves = [to_pixels(np.column_stack(line.get_data())) for line in lines]
-    box = ax.bbox
-    margin = 2.5 * fontsize
-    placed = [np.asarray(point, dtype=float) for point in obstacles_px]
+def label_beside_curves(ax, lines, labels, obstacles_px=(), *, fontsize: float = 8.5) -> list:
+    """Label each of ``lines`` beside itself: of the places just off its points (eight
+    directions, three gaps) whose text box crosses no curve, leaves the axes nowhere and
+    covers no placed label nor ``obstacles_px`` (display points, e.g. markers), the one where
+    its own curve is nearest relative to the nearest other curve, so that a label cannot be
+    read as another curve's. Returns the texts. Call it once the axes are laid out."""
+    renderer = ax.figure.canvas.get_renderer()
+    paths = [line.get_transform().transform_path(line.get_path()) for line in lines]
+    curves = [ax.transData.transform(np.column_stack(line.get_data())) for line in lines]
+    marker_px = 1.5 * fontsize * ax.figure.dpi / 72.0  # a marker of about 11-13 pt
+    taken = [Bbox.from_bounds(x - marker_px / 2, y - marker_px / 2, marker_px, marker_px)
+             for x, y in obstacles_px]  # fmt: skip
+    directions = [(math.cos(a), math.sin(a)) for a in np.linspace(0.0, 2 * math.pi, 9)[:-1]]
     texts = []
-    for k, (line, label) in enumerate(zip(lines, labels)):
-        points = curves[k]
-        inside = (
-            (points[:, 0] > box.x0 + margin)
-            & (points[:, 0] < box.x1 - margin)
-            & (points[:, 1] > box.y0 + margin)
-            & (points[:, 1] < box.y1 - margin)
-        )
-        candidates = points[inside] if inside.any() else points
-        near = [curve for j, curve in enumerate(curves) if j != k] + [np.array(placed)]
-        others = np.concatenate([o.reshape(-1, 2) for o in near if o.size])
-        if len(others):
-            distance = np.linalg.norm(candidates[:, None, :] - others[None, :, :], axis=2)
-            best = candidates[np.argmax(distance.min(axis=1))]
-        else:
-            best = candidates[len(candidates) // 2]
-        placed.append(best)
-        x, y = ax.transData.inverted().transform(best)
-        texts.append(
-            ax.text(x, y, label, ha="center", va="center", fontsize=fontsize, zorder=6,
-                    color=OKABE_ITO["black"],
-                    bbox=dict(facecolor="white", edgecolor=line.get_color(), pad=1.2, lw=0.8))
-        )  # fmt: skip
+    for k, label in enumerate(labels):
+        text = ax.text(0.0, 0.0, label, ha="center", va="center", fontsize=fontsize, zorder=6,
+                       color=OKABE_ITO["black"])  # fmt: skip
+        size = text.get_window_extent(renderer)
+        width, height = size.width, size.height
+        others = np.concatenate([c for j, c in enumerate(curves) if j != k] or [np.empty((0, 2))])
+        best, best_score = None, np.inf
+        step = max(len(curves[k]) // 80, 1)
+        for x, y in curves[k][::step]:
+            for dx, dy in directions:
+                for gap in (0.4, 0.8, 1.4):
+                    cx = x + dx * (gap * height + width / 2)
+                    cy = y + dy * (gap * height + height / 2)
+                    box = Bbox.from_bounds(cx - width / 2, cy - height / 2, width, height)
+                    if not (ax.bbox.contains(box.x0, box.y0) and ax.bbox.contains(box.x1, box.y1)):
+                        continue
+                    if any(path.intersects_bbox(box, filled=False) for path in paths):
+                        continue
+                    if any(box.overlaps(other) for other in taken):
+                        continue
+                    own = np.hypot(*(curves[k] - (cx, cy)).T).min()
+                    other = np.hypot(*(others - (cx, cy)).T).min() if len(others) else np.inf
+                    if own / other < best_score:
+                        best, best_score = (cx, cy, box), own / other
+        if best is None:  # nowhere clear: at the curve's middle, as a last resort
+            points = curves[k]
+            middle = points[len(points) // 2]
+            best = (*middle, Bbox.from_bounds(*middle, 0.0, 0.0))
+        cx, cy, box = best
+        taken.append(box)
+        text.set_position(ax.transData.inverted().transform((cx, cy)))
+        texts.append(text)
     return texts
 
 
@@ -263,12 +275,12 @@ _OFF_SCALE: dict[str, Any] = dict(
 def draw_distance_at_equal_time(latitude_deg: float, bearing_deg: float):
     """Figs 5.4-5.9: the ECI MKS's distance from the rotating-Earth 3DOF at equal time against
     the 3DOF's ground range (:func:`rotating.case`), the baseline cone at
-    :data:`rotating.ELEVATIONS_DEG`, each curve labelled on itself; a star at the 3DOF's apogee;
+    :data:`rotating.ELEVATIONS_DEG`, each curve labelled beside itself; a star at the 3DOF's apogee;
     a curve that leaves the :data:`TOP_KM` axis is marked with an arrow where it does, its
     maximum in the legend."""
     elevations = rotating.ELEVATIONS_DEG
     fig, ax = new_figure(figsize=(FULL_WIDTH_IN, 3.6), layout="constrained")
-    lines, stars, handles = [], [], []
+    lines, marks, handles = [], [], []  # marks: the stars and arrows, which labels avoid
     for elevation in elevations:
         flight, _, errors = rotating.case(latitude_deg, bearing_deg, elevation)
         x, y = errors.ground_range_m.to_numpy() / 1e3, errors.error_m.to_numpy() / 1e3
@@ -277,10 +289,11 @@ def draw_distance_at_equal_time(latitude_deg: float, bearing_deg: float):
         handles.append(line)
         k = np.argmin(np.abs(errors.time_s.to_numpy() - flight.attrs["apogee_time_s"]))
         ax.plot(x[k], y[k], "*", ms=11, mfc=line.get_color(), mec="k", mew=0.8, zorder=5)
-        stars.append((x[k], y[k]))
+        marks.append((x[k], y[k]))
         above = np.flatnonzero(y > TOP_KM)
         if len(above):  # the curve leaves the axis: mark where, give its maximum
             ax.plot(x[above[0]], TOP_KM, clip_on=False, zorder=6, **_OFF_SCALE)
+            marks.append((x[above[0]], TOP_KM))
             handles.append(
                 Line2D([], [], **_OFF_SCALE,
                        label=f"{elevation:g}° leaves the axis;\nits maximum {y.max():.1f} km")
@@ -298,5 +311,5 @@ def draw_distance_at_equal_time(latitude_deg: float, bearing_deg: float):
     fig.legend(handles=handles, title="gun elevation", title_fontsize=8, fontsize=8,
                loc="outside right upper")  # fmt: skip
     fig.canvas.draw()  # the layout fixes the axes' place, which the labels are placed in
-    label_on_curves(ax, lines, [f"{e:g}°" for e in elevations], ax.transData.transform(stars))
+    label_beside_curves(ax, lines, [f"{e:g}°" for e in elevations], ax.transData.transform(marks))
     return fig
