@@ -255,9 +255,8 @@ def label_beside_curves(ax, lines, labels, obstacles_px=(), *, fontsize: float =
                     if own / other < best_score:
                         best, best_score = (cx, cy, box), own / other
         if best is None:  # nowhere clear: at the curve's middle, as a last resort
-            points = curves[k]
-            middle = points[len(points) // 2]
-            best = (*middle, Bbox.from_bounds(*middle, 0.0, 0.0))
+            mx, my = curves[k][len(curves[k]) // 2]
+            best = (mx, my, Bbox.from_bounds(mx, my, 0.0, 0.0))
         cx, cy, box = best
         taken.append(box)
         text.set_position(ax.transData.inverted().transform((cx, cy)))
