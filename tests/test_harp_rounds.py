@@ -116,11 +116,19 @@ def test_missing_round_and_unknown_site_are_named():
         harp_rounds.round_trajectory("barbados", 181, n_points=1)
 
 
-def test_no_radar_file_gives_none_and_a_note(radar_dir):
+def test_no_radar_file_gives_none_and_the_caption_says_so(radar_dir):
+    """Without a radar file the figure draws no radar series and, a note being caption text,
+    writes none on the page (its one text is the title naming the case): the registry's
+    caption says the tracks are not in the text."""
+    from harp_analysis.registry import get_entry
+
     assert harp_rounds.load_radar_track("barbados", 181) is None
     fig = harp_figures.draw_round_figure("barbados", 181)
-    notes = [t.get_text() for t in fig.texts]
-    assert any("radar data for round 181 are not in the dissertation" in t for t in notes)
+    assert [t.get_text() for t in fig.texts] == [fig.get_suptitle()]
+    labels = {line.get_label() for ax in fig.axes for line in ax.get_lines()}
+    assert not any("radar" in label for label in labels)
+    for number in ("6.7", "6.8", "6.10"):
+        assert "the radar tracks are not in the dissertation" in get_entry(number).caption
 
 
 def test_radar_track_loads_in_si_and_is_drawn(radar_dir):

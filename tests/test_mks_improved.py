@@ -347,3 +347,24 @@ def test_beyond_the_drag_it_was_judged_on_the_improved_mks_warns():
         solution = mks_improved.solve(beyond)
     reference = threedof.simulate_3dof(beyond).attrs["apogee_altitude_m"]
     assert abs(solution.apogee_altitude_m / reference - 1.0) > 0.1
+
+
+def test_error_differences_are_not_blown_up_by_a_lucky_miss():
+    """Figure X.7's measure: the text's MKS missing by 18.6 m by luck and the improved one by
+    690 m is 37 times worse as a ratio, but 671.4 m as the difference the map draws; where the
+    improved MKS has no solution the difference is NaN, not a number."""
+    import pandas as pd
+
+    frame = pd.DataFrame(
+        {
+            "dissertation_impact_miss_m": [18.6, 2000.0, 500.0],
+            "improved_impact_miss_m": [690.0, 150.0, np.nan],
+            "dissertation_max_error_m": [1000.0, 3000.0, 800.0],
+            "improved_max_error_m": [400.0, 3000.0, np.nan],
+        }
+    )
+    differences = mks_improvement.error_differences_m(frame)
+    assert differences.impact_miss_m[0] == pytest.approx(671.4)
+    assert differences.impact_miss_m[1] == pytest.approx(-1850.0)
+    assert differences.max_error_m.tolist()[:2] == [-600.0, 0.0]
+    assert differences.iloc[2].isna().all()

@@ -60,7 +60,12 @@ def draw_miss_map(maps: pd.DataFrame, bearings_deg, root: str, site: str):
     the MKS solution, open where beta exceeds the MKS's validity, a cross where there is no
     solution, the firing elevation's contours over the points; ``site`` names the gun."""
     fig, axes = new_figure(
-        1, len(bearings_deg), figsize=(FULL_WIDTH_IN, 3.2), sharex=True, sharey=True
+        1,
+        len(bearings_deg),
+        figsize=(FULL_WIDTH_IN, 3.9),
+        sharex=True,
+        sharey=True,
+        layout="constrained",
     )
     for ax, bearing in zip(np.atleast_1d(axes), bearings_deg):
         rows = maps[(maps.root == root) & (maps.map_bearing_deg == bearing)]
@@ -124,7 +129,6 @@ def draw_miss_map(maps: pd.DataFrame, bearings_deg, root: str, site: str):
             label=f"firing elevation (every {ELEVATION_STEP_DEG:g}°)",
         ),
     ]
-    fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=7.5, bbox_to_anchor=(0.5, 0.0))
-    fig.suptitle(f"{root}-angle ECI MKS solution flown by the 3DOF: {site}", fontsize=9)
-    fig.subplots_adjust(bottom=0.33, top=0.85, wspace=0.12)
+    fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=7.5)
+    fig.suptitle(f"{root}-angle ECI MKS solution flown by the 3DOF:\n{site}", fontsize=9)
     return fig

@@ -9,6 +9,7 @@ from matplotlib.artist import Artist
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
+from matplotlib.ticker import MaxNLocator
 
 from .first_guess import COLUMNS, MODELS, ROOTS
 from .plotting import ENGINE_STYLES, FULL_WIDTH_IN, OKABE_ITO, new_figure
@@ -37,8 +38,8 @@ def _title(frame: pd.DataFrame) -> str:
     bearings = ", ".join(f"{b:03.0f}" for b in sorted(frame.bearing_deg.unique()))
     branch = frame.attrs.get("branch", "descending")
     return (
-        f"First guesses flown by the 3DOF: {projectiles} from {sites}, bearings {bearings}°T, "
-        f"{branch} branch"
+        f"First guesses flown by the 3DOF: {projectiles} from {sites},\n"
+        f"bearings {bearings}°T, {branch} branch"
     )
 
 
@@ -58,7 +59,7 @@ def draw_first_guess_comparison(frame: pd.DataFrame) -> Figure:
     paired = _paired(frame)
     if paired.empty:
         raise ValueError("frame has no point-root where both models have a root")
-    fig, (left, right) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 3.4))
+    fig, (left, right) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 4.0), layout="constrained")
     for model in MODELS:
         for root in ROOTS:
             rows = paired[(paired.model == model) & (paired.root == root)]
@@ -95,9 +96,11 @@ def draw_first_guess_comparison(frame: pd.DataFrame) -> Figure:
         )
         mean = float(flights.mean())
         right.axvline(mean, linewidth=1.0, **_STYLES[model])
-    right.set_xticks(counts)
+    right.set_xticks(range(min(counts), max(counts) + 1))
+    right.tick_params(axis="x", labelsize=8)
     right.set_xlabel(r"3DOF flights to land within 1 m, $n$")
     right.set_ylabel("shots")
+    right.yaxis.set_major_locator(MaxNLocator(integer=True))
     right.grid(axis="x", visible=False)
     no_root = int(
         frame[(frame.model == "improved") & frame.elevation_deg.isna()]
@@ -131,11 +134,10 @@ def draw_first_guess_comparison(frame: pd.DataFrame) -> Figure:
         for model in MODELS
     ]
     shots = len(paired) // len(MODELS)
-    fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=7.5, bbox_to_anchor=(0.5, 0.0))
+    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=7.5)
     fig.suptitle(
         f"{_title(frame)}\n{shots} shots where both models have a root; the improved MKS has "
         f"none for {no_root} more",
         fontsize=9,
     )
-    fig.subplots_adjust(bottom=0.33, top=0.84, wspace=0.3)
     return fig

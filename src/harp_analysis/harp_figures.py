@@ -1,15 +1,62 @@
-"""The figures of single HARP rounds (Figs 6.7-6.11): reporting on :mod:`.harp_rounds`."""
+"""The figures of Chapter 6: the apogee residuals of every round (Figs 6.5, 6.6), reporting on
+:mod:`.harp`, and single HARP rounds (Figs 6.7-6.11), reporting on :mod:`.harp_rounds`."""
 
 from __future__ import annotations
 
 import math
 
+import numpy as np
+from matplotlib.patches import Patch
 from matplotlib.ticker import MultipleLocator
 
-from . import harp_rounds
+from . import harp, harp_rounds
 from .plotting import FULL_WIDTH_IN, OKABE_ITO, new_figure, style
 
-__all__ = ["draw_round_figure"]
+__all__ = ["draw_residual_figure", "draw_round_figure"]
+
+#: The residual bars' fill: a neutral grey, no model's colour, light enough for Appendix E's
+#: black marks on it.
+_BAR_GREY = "#A6A6A6"
+
+
+def draw_residual_figure(site: str):
+    """Figs 6.5 and 6.6: measured minus predicted apogee per round of ``site``
+    (:func:`harp.predicted_apogees`, the dissertation model), the mean (dashed) and the mean
+    +- 1 std (band); a row that repeats an earlier one hatched and white, and where the
+    appendix prints its own Error (Yuma), a black dash on each bar."""
+    frame = harp.predicted_apogees(site)
+    fig, ax = new_figure(figsize=(FULL_WIDTH_IN, 3.8), layout="constrained")
+    x = np.arange(len(frame))
+    duplicate = frame.duplicate_of_earlier_row.to_numpy()
+    bars = ax.bar(x, frame.residual_m / 1e3, color=_BAR_GREY, edgecolor="k", lw=0.6, zorder=2)
+    for bar, repeated in zip(bars, duplicate):
+        if repeated:  # told apart by its hatching, not its shade
+            bar.set_facecolor("white")
+            bar.set_hatch("////")
+    mean, std = harp.residual_statistic(site, "mean"), harp.residual_statistic(site, "std")
+    handles = [
+        ax.axhline(mean, color="k", lw=1.2, ls="--", label=f"mean {mean:.2f} km"),
+        ax.axhspan(mean - std, mean + std, color="0.88", zorder=0,
+                   label=f"mean $\\pm$ 1 std ({std:.2f} km)"),
+    ]  # fmt: skip
+    if duplicate.any():
+        handles.append(
+            Patch(facecolor="white", edgecolor="k", hatch="////",
+                  label=f"round {frame.round_number[duplicate].iloc[0]}'s second (duplicated) row")
+        )  # fmt: skip
+    if "printed_error_m" in frame:
+        printed = dict(ls="none", marker="_", color="k", ms=13, mew=2.5, zorder=3)
+        handles += ax.plot(x, frame.printed_error_m / 1e3, label="Appendix E's printed Error",
+                           **printed)  # fmt: skip
+    ax.set_xticks(x, frame.round_number, rotation=90, fontsize=8)
+    ax.set_xlim(-0.7, len(frame) - 0.3)
+    ax.set_xlabel("round")
+    ax.set_ylabel("measured $-$ predicted\napogee (km)")
+    ax.set_title(f"{site.capitalize()} Martlet 2C rounds: ECI Modified Kepler, dissertation model",
+                 fontsize=9)  # fmt: skip
+    fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncol=2)
+    return fig
+
 
 #: Each radar's marker (black, the "measured" colour): filled circle, open square.
 _RADAR_MARKERS = {"MPS-19": dict(marker="o"), "M-33": dict(marker="s", markerfacecolor="none")}
@@ -25,7 +72,8 @@ def _splash_style(label: str) -> dict:
 
 def draw_round_figure(site: str, round_number: int):
     """Figs 6.7-6.11: altitude against time and against radar range, the ECI MKS curve and the
-    radar points if ``data/harp/radar`` has them, else a note saying they are missing.
+    radar points if ``data/harp/radar`` has them (the caption says they are not in the
+    dissertation).
 
     Told apart without colour: the MKS in its engine style (dotted), radar points as black
     markers (one shape per radar), the measured apogee a black dashed line, and where the text
@@ -34,7 +82,7 @@ def draw_round_figure(site: str, round_number: int):
     launch_site, number, row = harp_rounds._round_row(site, round_number)
     trajectory = harp_rounds.round_trajectory(site, number)
     radar = harp_rounds.load_radar_track(site, number)
-    fig, (by_time, by_range) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 3.6))
+    fig, (by_time, by_range) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 3.6), layout="constrained")
     altitude_km = trajectory.altitude_m / 1e3
     mks = {**style("MKS"), "lw": 2.2}
     by_time.plot(trajectory.time_s, altitude_km, label="ECI Modified Kepler", **mks)
@@ -86,29 +134,15 @@ def draw_round_figure(site: str, round_number: int):
     by_range.set_xlim(left=0.0)
     # One legend under both panels, clear of the curves (the range panel holds every entry).
     handles, labels = by_range.get_legend_handles_labels()
-    fig.subplots_adjust(bottom=0.38 if radar is None else 0.30, top=0.88, wspace=0.3)
     fig.legend(
         handles,
         labels,
-        loc="upper center",
-        bbox_to_anchor=(0.5, 0.2 if radar is None else 0.13),
+        loc="outside lower center",
         ncol=2,
         fontsize=8.5,
         frameon=False,
         handlelength=3,
     )
-    if radar is None:
-        fig.text(
-            0.5,
-            -0.02,
-            f"radar data for round {number} are not in the dissertation "
-            "(see data/harp/radar/README.md)",
-            ha="center",
-            va="bottom",
-            color=OKABE_ITO["black"],
-            fontsize=9,
-            bbox=dict(facecolor="white", edgecolor=OKABE_ITO["grey"]),
-        )
     fig.suptitle(
         f"{launch_site.name} round {number}: {row.muzzle_speed_m_s / 1e3:.3f} km/s, "
         f"{math.degrees(launch_site.elevation_rad):.0f}°, bearing "

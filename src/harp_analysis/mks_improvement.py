@@ -54,6 +54,7 @@ __all__ = [
     "judged_rms",
     "judged_improvement",
     "map_shares",
+    "error_differences_m",
 ]
 
 _SPIN = earth.ROTATION_RATE_RAD_S
@@ -180,6 +181,8 @@ def _row(launch: Launch, variant: str, fitted: Calibration) -> dict:
         "latitude_deg": launch.latitude_deg,
         "bearing_deg": launch.bearing_deg,
         "rotating": launch.rotation_rate_rad_s != 0.0,
+        # the dissertation's eq 3.22 beta (ECI where the Earth turns): the text's validity
+        "beta": float(mks_improved.dissertation(launch).ascent.beta[0, 0]),
         "variant": variant,
         **{name: getattr(errors, name) for name in LaunchErrors.__dataclass_fields__},
     }
@@ -187,7 +190,9 @@ def _row(launch: Launch, variant: str, fitted: Calibration) -> dict:
 
 def judge(launches: tuple[Launch, ...] = JUDGING) -> pd.DataFrame:
     """Both variants against the 3DOF on ``launches`` (the judging set by default), one row per
-    launch and variant, with the calibration fitted on :data:`TRAINING`."""
+    launch and variant, with the calibration fitted on :data:`TRAINING`; ``beta`` is the
+    dissertation's MKS beta of the launch (the text holds its MKS valid to
+    :data:`mks.BETA_VALIDITY_LIMIT`)."""
     fitted = calibration()
     return pd.DataFrame(
         [_row(launch, variant, fitted) for launch in launches for variant in mks_improved.VARIANTS]
@@ -313,3 +318,16 @@ def map_shares(error_map: pd.DataFrame) -> pd.Series:
         shares[f"better_{measure}_inside"] = float(better[inside].mean())
     shares["unsolved"] = int(error_map.improved_impact_miss_m.isna().sum())
     return pd.Series(shares)
+
+
+def error_differences_m(error_map: pd.DataFrame) -> pd.DataFrame:
+    """The improved MKS's error minus the dissertation's (m; negative: the improved one is
+    nearer the 3DOF) at each :func:`error_map` point, for the impact miss and the largest error
+    in flight: a measure that near-zero errors cannot blow up, as a ratio does where the text's
+    MKS misses by metres by luck. NaN where the improved MKS has no solution."""
+    return pd.DataFrame(
+        {
+            measure: error_map[f"improved_{measure}"] - error_map[f"dissertation_{measure}"]
+            for measure in ("impact_miss_m", "max_error_m")
+        }
+    )
