@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from harp_analysis import claims_extra, earth, harp, kepler, mks, threedof
+from harp_analysis import claims_extra, comparisons, earth, harp, kepler, mks, threedof
 from harp_analysis.launch import baseline_chapter_4, chapter_2
 from harp_analysis.projectiles import LP
 from harp_analysis.validation import ModelValidityWarning
@@ -199,8 +199,14 @@ def test_min_mach_is_below_the_launch_mach_and_the_whole_flight_is_slower():
     assert 1 < flight <= ascent < 2157.0 / 340.0
 
 
-def test_variant_speed_increase():
-    assert claims_extra.variant_speed_increase() == pytest.approx(2590 / 2157 - 1)
+def test_variant_speed_increase_is_the_flown_launches_and_about_a_fifth():
+    """The increase is that of the launches Fig 4.17's comparison flies (the 3DOF's first
+    speed), and Ch. 4 C's "20 % increase" to the printed 2.59 km/s's rounding."""
+    faster = comparisons.case("baseline", 45.0, **comparisons.VARIANTS["speed_plus_20pct"])[0]
+    baseline = comparisons.case("baseline", 45.0)[0]
+    flown = faster.speed_m_s.iloc[0] / baseline.speed_m_s.iloc[0] - 1
+    assert claims_extra.variant_speed_increase() == pytest.approx(flown, rel=1e-9)
+    assert claims_extra.variant_speed_increase() == pytest.approx(0.20, abs=0.005 / 2.157)
 
 
 # --- Chapter 6 --------------------------------------------------------------------------------
@@ -243,7 +249,7 @@ def test_late_arrival_miss_is_speed_times_delay_plus_the_gravity_drop():
 # === Chapters 1-3 and 7, Appendices: the sweep's rows (second part of claims_extra) ===========
 from scipy import constants  # noqa: E402
 
-from harp_analysis import atmosphere, comparisons, effort, scenarios  # noqa: E402
+from harp_analysis import atmosphere, effort, scenarios  # noqa: E402
 from harp_analysis.comparisons import chapter_4_launch  # noqa: E402
 from harp_analysis.launch import HP_CHAPTER_2  # noqa: E402
 from harp_analysis.projectiles import BASELINE, HP  # noqa: E402
