@@ -10,8 +10,10 @@ from __future__ import annotations
 import dataclasses
 import math
 import warnings
+from collections.abc import Callable
 
 import numpy as np
+import pandas as pd
 from scipy import constants
 from scipy.optimize import brentq
 
@@ -1036,7 +1038,7 @@ def reentry_speed_loss(engine: str = "6DOF", projectile: str = "HP") -> ReentryS
     """Fig 4.3's speed drop on re-entry of Chapter 2 A's flight of ``projectile`` by the 6DOF,
     MLT or 3DOF (Ch. 4 A: "the sharp decrease in velocity that indicates reentry into the
     atmosphere in the MLT and numerical simulations")."""
-    flights = {
+    flights: dict[str, Callable[[str], pd.DataFrame]] = {
         "6DOF": scenarios.reference_6dof,
         "MLT": scenarios.reference_mlt,
         "3DOF": scenarios.reference_3dof,
