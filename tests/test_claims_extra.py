@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from harp_analysis import claims_extra, earth, harp, kepler, mks, threedof
+from harp_analysis import claims_extra, comparisons, earth, harp, kepler, mks, rotating, threedof
 from harp_analysis.launch import baseline_chapter_4, chapter_2
 from harp_analysis.projectiles import LP
 from harp_analysis.validation import ModelValidityWarning
@@ -199,8 +199,14 @@ def test_min_mach_is_below_the_launch_mach_and_the_whole_flight_is_slower():
     assert 1 < flight <= ascent < 2157.0 / 340.0
 
 
-def test_variant_speed_increase():
-    assert claims_extra.variant_speed_increase() == pytest.approx(2590 / 2157 - 1)
+def test_variant_speed_increase_is_the_flown_launches_and_about_a_fifth():
+    """The increase is that of the launches Fig 4.17's comparison flies (the 3DOF's first
+    speed), and Ch. 4 C's "20 % increase" to the printed 2.59 km/s's rounding."""
+    faster = comparisons.case("baseline", 45.0, **comparisons.VARIANTS["speed_plus_20pct"])[0]
+    baseline = comparisons.case("baseline", 45.0)[0]
+    flown = faster.speed_m_s.iloc[0] / baseline.speed_m_s.iloc[0] - 1
+    assert claims_extra.variant_speed_increase() == pytest.approx(flown, rel=1e-9)
+    assert claims_extra.variant_speed_increase() == pytest.approx(0.20, abs=0.005 / 2.157)
 
 
 # --- Chapter 6 --------------------------------------------------------------------------------
@@ -243,7 +249,7 @@ def test_late_arrival_miss_is_speed_times_delay_plus_the_gravity_drop():
 # === Chapters 1-3 and 7, Appendices: the sweep's rows (second part of claims_extra) ===========
 from scipy import constants  # noqa: E402
 
-from harp_analysis import atmosphere, comparisons, effort, scenarios  # noqa: E402
+from harp_analysis import atmosphere, effort, scenarios  # noqa: E402
 from harp_analysis.comparisons import chapter_4_launch  # noqa: E402
 from harp_analysis.launch import HP_CHAPTER_2  # noqa: E402
 from harp_analysis.projectiles import BASELINE, HP  # noqa: E402
@@ -493,3 +499,42 @@ def test_printed_angle_of_attack_is_the_tangent():
     alpha = float(scenarios.reference_6dof("HP").angle_of_attack_rad.max())
     assert ratio == pytest.approx(1 + alpha**2 / 3 + 2 * alpha**4 / 15, rel=1e-5)
     assert math.degrees(alpha) > 4  # the large angle outside the air (Ch. 4 A)
+
+
+# --- Issue 26: statements scored --------------------------------------------------------------
+def test_the_clock_s_launch_error_shrinks_as_the_speed_does():
+    """Appendix A's clock leads its positions by one step, so the MKS is V dt ahead: below 30 km
+    on the way up that part has fallen with the speed, while the MKS's own error (zero at
+    launch) has grown, so the error left lies between the speed ratio and 1."""
+    rows, _ = rotating.appendix_a_errors(0.1, 45.0)
+    climbing = rows[(rows.time_s <= rows.attrs["apogee_time_s"]) & (rows.altitude_m < 30e3)]
+    speed_ratio = climbing.speed_m_s.min() / rows.speed_m_s.iloc[0]
+    assert speed_ratio < claims_extra.launch_error_left_below(30.0, 0.1, 45.0) < 1.0
+    assert rotating.appendix_a_errors(0.1, 45.0)[1].total_geometric_m.iloc[0] == pytest.approx(
+        rotating.appendix_a_launch_error_m(0.1, 45.0)
+    )
+
+
+@pytest.mark.parametrize("engine", ["6DOF", "MLT", "3DOF"])
+def test_the_descent_s_fastest_point_is_slower_than_the_gun_and_faster_than_impact(engine):
+    """Drag takes energy all the way: the fastest point on the way down is slower than the
+    launch (2022 m/s, Chapter 2 A) and faster than the apogee's speed and the impact."""
+    loss = claims_extra.reentry_speed_loss(engine, "HP")
+    assert loss.impact_speed_m_s < loss.peak_speed_m_s < 2022.0
+    assert 0.0 < loss.loss < 1.0 and 0.0 < loss.flight_share < 0.5
+
+
+def test_off_design_error_at_the_design_launch_is_chapter_4_s():
+    design = claims_extra.off_design_error(45.0, 2157.0)
+    assert design.error_km == pytest.approx(comparisons.error_at_apogee_km("baseline", 45.0))
+    assert design.share_of_apogee == pytest.approx(
+        comparisons.error_at_apogee_km("baseline", 45.0, relative=True)
+    )
+
+
+def test_the_corrected_angular_momentum_slows_the_error_s_growth():
+    """Taking h_inf from the 3DOF's apogee removes the mismatch that drives the growth."""
+    growth = claims_extra.error_growth()
+    assert growth.impact_over_apogee > 1.0
+    assert growth.corrected_impact_over_apogee < growth.impact_over_apogee
+    assert growth.corrected_impact_km < growth.impact_km

@@ -1,10 +1,12 @@
 """Every row of the claims ledger is recomputed by the package and its verdict checked."""
 
 import re
+import unicodedata
+from difflib import SequenceMatcher
 
 import pytest
 
-from harp_analysis import comparisons, harp_rounds, ledger, registry, rotating
+from harp_analysis import comparisons, harp_rounds, ledger, paths, registry, rotating
 
 CLAIMS = ledger.load_claims()
 
@@ -111,6 +113,7 @@ def test_relative_tolerance(tmp_path):
         (("tolerance = 0.01", "tolerance = 0.01\ncolour = 1"), "unknown field"),
         (("figures = []", ""), "missing field.*figures"),
         (("figures = []", 'figures = "4.7"'), "figures must be a list"),
+        (("figures = []", 'figures = []\nquote = "too short"'), "quote must be at least five"),
     ],
 )
 def test_malformed_ledger_rows_are_named(tmp_path, edit, message):
@@ -261,3 +264,111 @@ def test_numbers_typed_into_explanations_hold(row, typed, compute):
     (claim,) = [c for c in CLAIMS if c.id == row]
     assert typed in claim.explanation
     assert compute() == typed
+
+
+# --- ties by meaning: every row's paragraph in the text, and the figures it cites -------------
+DISSERTATION = paths.ROOT.parent / "shared" / "dissertation" / "000_5344a0ab06f4edea.txt"
+needs_text = pytest.mark.skipif(
+    not DISSERTATION.exists(), reason="the dissertation's text (../shared) is not beside the repo"
+)
+#: a statement that shares this many words in a row with a paragraph quotes it
+STATEMENT_RUN = 8
+#: the text's slips in citing figures (registry/no_data.md), by the words around them
+CITATION_SLIPS = {
+    "figure 3 16 shows that with the corrected": ("3.16", "4.13"),
+    "velocity vector as shown in figure 5 9": ("5.9", "5.10"),
+    "as shown in figure 5 10": ("5.10", "5.11"),
+    "can be measured from figure 5 4": ("5.4", "6.4"),
+}
+_CITATION = re.compile(
+    r"\b(Figures?|Table)\s+(\d+\.\d+)((?:\s*(?:-|\u2013|through|to|and|&|,)\s*\d+\.\d+)*)"
+)
+
+
+def _words(text: str) -> list[str]:
+    return re.findall(r"[a-z0-9]+", unicodedata.normalize("NFKD", text).lower())
+
+
+def _figures_cited(paragraph: str) -> set[str]:
+    """Figures and tables a paragraph cites: "Figure 4.7", "Figures 5.4-5.9", "Figures 2.3 and
+    2.7", "Figures 6.2 & 6.3", "Figures 5.4 through 5.9", "Table 4.1"; slips corrected."""
+    cited = set()
+    for kind, first, rest in _CITATION.findall(paragraph):
+        items = [first] + re.findall(r"\d+\.\d+", rest)
+        prefix = "Table " if kind == "Table" else ""
+        if re.search(r"-|\u2013|through|\bto\b", rest) and len(items) == 2:
+            chapter, start = items[0].split(".")
+            items = [f"{chapter}.{n}" for n in range(int(start), int(items[1].split(".")[1]) + 1)]
+        cited |= {prefix + item for item in items}
+    said = " ".join(_words(paragraph))
+    for context, (wrong, meant) in CITATION_SLIPS.items():
+        if context in said:
+            cited = (cited - {wrong}) | {meant}
+    return cited
+
+
+@pytest.mark.parametrize(
+    "paragraph, figures",
+    [
+        ("as shown in Figure 4.18, the", {"4.18"}),
+        ("in Figures 5.4-5.9.", {f"5.{n}" for n in range(4, 10)}),
+        ("Figures 5.4 through 5.6 show", {"5.4", "5.5", "5.6"}),
+        ("seen in Figures 6.2 & 6.3 the", {"6.2", "6.3"}),
+        ("Figures 2.3 and 2.7 compare", {"2.3", "2.7"}),
+        ("are given in Table 4.1 below", {"Table 4.1"}),
+        ("The bearing of fire can be measured from Figure 5.4 as 109", {"6.4"}),
+        ("no figure at all", set()),
+    ],
+)
+def test_a_paragraph_s_citations_are_read(paragraph, figures):
+    assert _figures_cited(paragraph) == figures
+
+
+def _paragraphs() -> list[str]:
+    return DISSERTATION.read_text().split("\n")
+
+
+def _located(claim, paragraphs) -> list[int]:
+    """Indices of the paragraphs ``claim`` comes from: those holding its quote, else those
+    sharing the longest run (at least STATEMENT_RUN words) with its statement."""
+    said = [" " + " ".join(_words(p)) + " " for p in paragraphs]
+    if claim.quote:
+        quote = " " + " ".join(_words(claim.quote)) + " "
+        return [i for i, p in enumerate(said) if quote in p]
+    statement = _words(claim.statement)
+    runs = []
+    for paragraph in paragraphs:
+        words = _words(paragraph)
+        match = SequenceMatcher(None, statement, words, autojunk=False).find_longest_match(
+            0, len(statement), 0, len(words)
+        )
+        runs.append(match.size)
+    longest = max(runs)
+    return [i for i, run in enumerate(runs) if run == longest] if longest >= STATEMENT_RUN else []
+
+
+@pytest.fixture(scope="module")
+def located():
+    paragraphs = _paragraphs()
+    return paragraphs, {claim.id: _located(claim, paragraphs) for claim in CLAIMS}
+
+
+@needs_text
+def test_every_row_locates_the_text_it_scores(located):
+    _, where = located
+    lost = [claim_id for claim_id, indices in where.items() if not indices]
+    assert not lost, f"rows whose paragraph is not found (add a quote): {lost}"
+
+
+@needs_text
+def test_every_row_is_tied_to_the_figures_its_paragraph_cites(located):
+    """For each paragraph that some row comes from, every figure it cites is tied to every row
+    from it: a row drawn from the prose about a figure answers to that figure's status."""
+    paragraphs, where = located
+    untied = []
+    for claim in CLAIMS:
+        for index in where[claim.id]:
+            missing = _figures_cited(paragraphs[index]) - set(claim.figures)
+            if missing:
+                untied.append(f"{claim.id} (L{index + 1}): {sorted(missing)}")
+    assert not untied, "rows not tied to a figure their paragraph cites:\n" + "\n".join(untied)

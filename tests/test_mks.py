@@ -396,8 +396,43 @@ def test_arguments_of_different_lengths_are_refused():
         mks.ModifiedKeplerSolution(2000.0, np.array([0.5, 0.8]), np.array([0.1, 0.1, 0.1]), 500.0)
 
 
-def test_warm_up_compiles_the_kernels():
-    mks.warm_up()
+WARM_UP_THEN_USE = """
+import json, numpy as np, numba
+from harp_analysis import mks
+from harp_analysis.launch import baseline_chapter_4
+kernels = [k for k in vars(mks).values() if isinstance(k, numba.core.registry.CPUDispatcher)]
+count = lambda: sum(len(k.signatures) for k in kernels)
+mks.warm_up()
+warmed = count()
+solution = mks.for_launch([baseline_chapter_4(45.0), baseline_chapter_4(65.0)])
+solution.time(solution.impact_angle[:, None])
+one = mks.ModifiedKeplerSolution(2157.0, 0.8, 0.1, 500.0)
+one.sample(np.linspace(0.0, one.impact_angle, 5))
+print(json.dumps([warmed, count()]))
+"""
+
+
+def test_warm_up_compiles_what_a_first_use_needs():
+    """In a fresh interpreter, after warm_up a scalar and a batched solution, sampled and timed,
+    compile no further kernel signature: the compiling happened at warm-up, not at first use."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    if os.environ.get("NUMBA_DISABLE_JIT") == "1":
+        pytest.skip("NUMBA_DISABLE_JIT=1: there are no kernels to compile")
+    run = subprocess.run(
+        [sys.executable, "-c", WARM_UP_THEN_USE],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        check=False,
+    )
+    assert run.returncode == 0, run.stderr
+    warmed, after_use = json.loads(run.stdout)
+    assert warmed > 0
+    assert after_use == warmed
 
 
 def test_the_constants_are_read_only_views():

@@ -96,6 +96,36 @@ def test_statuses_agree_with_the_ledger():
     assert gallery.status_problems() == []
 
 
+def _figure(no_number=""):
+    return registry.RegistryEntry(
+        "9.9", "figure", "t", "data", "n.ipynb", "f.png", "reproduced", "", no_number=no_number
+    )
+
+
+@pytest.mark.parametrize(
+    "no_number, rows, problem",
+    [
+        ("", [], "no ledger row speaks about it"),
+        ("the text states no number about it", [], None),
+        ("the text states no number about it", ["a row"], "no_number is stale"),
+    ],
+)
+def test_a_reproduced_figure_without_rows_says_the_text_states_no_number(
+    monkeypatch, no_number, rows, problem
+):
+    """A figure is "reproduced" without any row only where the registry says why: the text
+    states no number about it. A row about it makes that stale."""
+
+    class Reproduces:  # a ledger result that reproduces
+        class claim:
+            verdict = "reproduces"
+
+    monkeypatch.setattr(gallery, "load_registry", lambda: (_figure(no_number),))
+    monkeypatch.setattr(gallery, "claims_by_figure", lambda: {"9.9": [Reproduces] * len(rows)})
+    problems = gallery.status_problems()
+    assert (problems == []) if problem is None else any(problem in p for p in problems)
+
+
 # --- the project's own figures, beyond the dissertation -------------------------------------------
 def test_extensions_are_numbered_outside_the_dissertation():
     assert EXTENSIONS, "the registry lists no extension"

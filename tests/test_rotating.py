@@ -1,24 +1,34 @@
 """Chapter 5's comparison: the ECI MKS tracks the rotating 3DOF, and the printed eq 6.14 does
-not. Thresholds are the text's (Ch. 5 D) or follow from the ECI correction itself; the values
-the project computes are pinned by the ledger's rows, not here."""
+not. Thresholds are the text's reproduced ones (Ch. 5 D's 1 km), Chapter 4's comparison on a
+non-rotating Earth, or follow from the ECI correction itself; the values the project computes
+are pinned by the ledger's rows, not here. (The text's "largest error of 1.5 km" is not
+reproduced, so it is no threshold: the ledger scores it.)"""
 
 import numpy as np
 import pytest
 
-from harp_analysis import earth, eci, rotating
+from harp_analysis import comparisons, earth, eci, rotating
 from harp_analysis.launch import baseline_chapter_4
 
 AIRS = ("two_segment", "three_layer")  # eqs 2.1-2.2, and Appendix A's 3DOF listing
-TEXT_WORST_KM = 1.5  # Ch. 5 D: "the largest error of 1.5 km at apogee" (higher elevations)
+
+
+def _non_rotating_worst_km() -> float:
+    """The largest MKS error at apogee of Chapter 4's comparison on a non-rotating Earth (the
+    baseline over its elevations): the accuracy the ECI correction is to carry over."""
+    return max(
+        comparisons.error_at_apogee_km("baseline", e) for e in comparisons.BASELINE_ELEVATIONS_DEG
+    )
 
 
 @pytest.mark.parametrize("atmosphere", AIRS)
-def test_most_errors_are_under_1km_and_none_above_45deg_exceeds_the_text_worst(atmosphere):
-    """Ch. 5 D: "for most of the trajectories, the total position error is less than 1 km";
-    for the higher elevations (45-85 deg) the worst is 1.5 km at apogee."""
+def test_most_errors_are_under_1km_and_the_higher_shots_within_the_non_rotating_worst(atmosphere):
+    """Ch. 5 D: "for most of the trajectories, the total position error is less than 1 km".
+    With the ECI correction the rotating Earth costs the higher elevations (45-85 deg) no
+    accuracy beyond what the MKS has on a non-rotating Earth: within Chapter 4's worst."""
     errors = rotating.errors_at_apogee_km(atmosphere)
     assert np.mean(np.array(list(errors.values())) < 1.0) > 0.5
-    assert max(v for (_, _, el), v in errors.items() if el >= 45.0) < TEXT_WORST_KM
+    assert max(v for (_, _, el), v in errors.items() if el >= 45.0) < _non_rotating_worst_km()
 
 
 @pytest.mark.parametrize("atmosphere", AIRS)
@@ -40,10 +50,11 @@ def test_appendix_a_air_puts_the_worst_case_where_the_text_does():
 @pytest.mark.parametrize("bearing", [90.0, 270.0])
 def test_printed_decay_is_worse_than_anything_the_text_reports(bearing):
     """Eq 6.14 as printed drops (Vrel/V)^2 from the decay: east and west at 45 deg it puts the
-    error beyond the text's largest, 1.5 km, while the consistent decay stays within it."""
+    error beyond the worst of the non-rotating comparison (Chapter 4), while the consistent
+    decay stays within it."""
     consistent = rotating.error_at_apogee_km(0.0, bearing, 45.0)
     printed = rotating.error_at_apogee_km(0.0, bearing, 45.0, decay="printed")
-    assert consistent < TEXT_WORST_KM < printed
+    assert consistent < _non_rotating_worst_km() < printed
 
 
 @pytest.mark.parametrize(

@@ -10,8 +10,10 @@ from __future__ import annotations
 import dataclasses
 import math
 import warnings
+from collections.abc import Callable
 
 import numpy as np
+import pandas as pd
 from scipy import constants
 from scipy.optimize import brentq
 
@@ -49,6 +51,13 @@ from .validation import (
 )
 
 __all__ = [
+    "launch_error_left_below",
+    "ReentrySpeedLoss",
+    "reentry_speed_loss",
+    "OffDesignError",
+    "off_design_error",
+    "ErrorGrowth",
+    "error_growth",
     "STANDARD_PRESSURE_PA",
     "tangent_line_ceiling_m",
     "v3_apogee_bound_km",
@@ -995,3 +1004,113 @@ def printed_angle_of_attack_ratio(projectile: str = "HP") -> float:
     the angle itself at the largest angle of attack of Chapter 2 A's 6DOF flight (Fig 2.5)."""
     alpha = float(scenarios.reference_6dof(projectile).angle_of_attack_rad.max())
     return math.tan(alpha) / alpha
+
+
+# --- Issue 26: statements scored ----------------------------------------------------------------
+def launch_error_left_below(
+    altitude_km: float = 30.0, dt_s: float = 0.1, elevation_deg: float = 45.0
+) -> float:
+    """Smallest error of the MKS against Appendix A's printed rows on the way up below
+    ``altitude_km``, over its error at launch (Ch. 4 B, Fig 4.11: the launch error "quickly
+    corrects itself"; under 0.1 if it has). The error at launch is the macro's clock, one step
+    ahead of its positions (:func:`rotating.appendix_a_launch_error_m`)."""
+    rows, errors = rotating.appendix_a_errors(dt_s, elevation_deg)
+    climbing = (rows.time_s <= rows.attrs["apogee_time_s"]) & (rows.altitude_m < altitude_km * 1e3)
+    error = errors.total_geometric_m.to_numpy()[climbing.to_numpy()[: len(errors)]]
+    return float(error.min() / error[0])
+
+
+@dataclasses.dataclass(frozen=True)
+class ReentrySpeedLoss:
+    """The speed a flight loses from its fastest point on the way down to impact."""
+
+    peak_speed_m_s: float
+    impact_speed_m_s: float
+    peak_altitude_km: float
+    flight_share: float  # the time from the peak to impact, as a share of the time of flight
+
+    @property
+    def loss(self) -> float:
+        return 1.0 - self.impact_speed_m_s / self.peak_speed_m_s
+
+
+def reentry_speed_loss(engine: str = "6DOF", projectile: str = "HP") -> ReentrySpeedLoss:
+    """Fig 4.3's speed drop on re-entry of Chapter 2 A's flight of ``projectile`` by the 6DOF,
+    MLT or 3DOF (Ch. 4 A: "the sharp decrease in velocity that indicates reentry into the
+    atmosphere in the MLT and numerical simulations")."""
+    flights: dict[str, Callable[[str], pd.DataFrame]] = {
+        "6DOF": scenarios.reference_6dof,
+        "MLT": scenarios.reference_mlt,
+        "3DOF": scenarios.reference_3dof,
+    }
+    flight = flights[check_choice(engine, "engine", tuple(flights))](projectile)
+    descent = flight[flight.time_s >= flight.attrs["apogee_time_s"]]
+    peak = descent.loc[descent.speed_m_s.idxmax()]
+    duration = flight.time_s.iloc[-1]
+    return ReentrySpeedLoss(
+        float(peak.speed_m_s),
+        float(flight.speed_m_s.iloc[-1]),
+        float(peak.altitude_m) / 1e3,
+        float((duration - peak.time_s) / duration),
+    )
+
+
+@dataclasses.dataclass(frozen=True)
+class OffDesignError:
+    """The MKS's error at the 3DOF's apogee for a launch off Chapter 4's design."""
+
+    error_km: float
+    apogee_km: float
+
+    @property
+    def share_of_apogee(self) -> float:
+        return self.error_km / self.apogee_km
+
+
+def off_design_error(elevation_deg: float = 45.0, speed_m_s: float = 2157.0) -> OffDesignError:
+    """Error at apogee of the baseline cone launched at ``elevation_deg`` and ``speed_m_s``
+    (Ch. 4 C: Assumption 3, the straight path through the air, "would not be accurate for flat
+    fire approaches or low speed trajectories that curve significantly")."""
+    flight, _, errors = case("baseline", elevation_deg, speed_m_s=speed_m_s)
+    apogee = flight.attrs["apogee_time_s"]
+    error = float(np.interp(apogee, errors.time_s, errors.total_geometric_m))
+    return OffDesignError(error / 1e3, flight.attrs["apogee_altitude_m"] / 1e3)
+
+
+@dataclasses.dataclass(frozen=True)
+class ErrorGrowth:
+    """The MKS's error at impact over its error at apogee, smallest over Chapter 4's
+    elevations, as printed and with the asymptotic angular momentum taken from the 3DOF's
+    apogee (Fig 4.13's correction)."""
+
+    impact_over_apogee: float
+    corrected_impact_over_apogee: float
+    impact_km: float  # largest over the elevations, as printed
+    corrected_impact_km: float  # the same elevation, corrected
+
+
+def error_growth() -> ErrorGrowth:
+    """How the MKS's error grows from apogee to impact (Ch. 7 C: "the minor mismatch of
+    predicted angular momentum with reality that causes the error of the projectile to grow
+    over the trajectory"), the baseline at 30-85 deg."""
+
+    def ends(momentum_from_apogee: bool) -> np.ndarray:
+        rows = []
+        for elevation in BASELINE_ELEVATIONS_DEG:
+            flight, _, errors = case(
+                "baseline", elevation, momentum_from_apogee=momentum_from_apogee
+            )
+            at_apogee = np.interp(
+                flight.attrs["apogee_time_s"], errors.time_s, errors.total_geometric_m
+            )
+            rows.append((errors.total_geometric_m.iloc[-1], at_apogee))
+        return np.array(rows)
+
+    printed, corrected = ends(False), ends(True)
+    worst = int(np.argmax(printed[:, 0]))
+    return ErrorGrowth(
+        float(np.min(printed[:, 0] / printed[:, 1])),
+        float(np.min(corrected[:, 0] / corrected[:, 1])),
+        float(printed[worst, 0]) / 1e3,
+        float(corrected[worst, 0]) / 1e3,
+    )

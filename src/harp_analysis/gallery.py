@@ -43,17 +43,27 @@ def _rows(results: list[ClaimResult], only_deviating: bool = False) -> str:
 def status_problems() -> list[str]:
     """Where a registry status disagrees with the ledger rows about the figure: "reproduced"
     with a row that does not reproduce (a recovered row does not: it agrees by construction),
-    or "deviates" with none."""
+    or "deviates" with none; a reproduced figure that no row speaks about without its
+    ``no_number`` (the text states no number about it), or a ``no_number`` on a figure that has
+    rows."""
     tied = claims_by_figure()
     problems = []
     for entry in load_registry():
-        deviating = [r for r in tied.get(entry.number, []) if r.claim.verdict != "reproduces"]
+        rows = tied.get(entry.number, [])
+        deviating = [r for r in rows if r.claim.verdict != "reproduces"]
         if entry.status == "reproduced" and deviating:
             problems.append(
                 f"{entry.label} is 'reproduced' but {_rows(deviating)} do not reproduce"
             )
         if entry.status == "deviates" and not deviating:
             problems.append(f"{entry.label} is 'deviates' but no ledger row about it deviates")
+        if entry.status == "reproduced" and not rows and not entry.no_number.strip():
+            problems.append(
+                f"{entry.label} is 'reproduced' but no ledger row speaks about it: score what "
+                "the text states about it, or say in no_number that it states no number"
+            )
+        if rows and entry.no_number:
+            problems.append(f"{entry.label} has ledger rows, so its no_number is stale")
     return problems
 
 
@@ -62,6 +72,8 @@ def _line(entry: RegistryEntry, tied: list[ClaimResult]) -> str:
     reason = entry.reason
     if entry.status in ("deviates", "partial") and _rows(tied, True):
         reason = f"{reason} Rows: {_rows(tied, True)}."
+    if entry.no_number:
+        reason = f"{reason} No ledger row: {entry.no_number}".strip()
     return (
         f"| {entry.label} | {entry.title} | {entry.figure_class} | "
         f"{_SHOWN[entry.status]} | {notebook} | {reason} |"

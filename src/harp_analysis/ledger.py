@@ -1,4 +1,4 @@
-"""The claims ledger: every number the dissertation states, recomputed by the package.
+"""The claims ledger: the dissertation's checkable statements, recomputed by the package.
 
 The ledger is ``registry/claims.toml``. Each ``[[claim]]`` names the package callable that
 computes the project's value (``compute = "module:function"``, with optional ``kwargs``, an
@@ -36,6 +36,12 @@ Every row names the figures and tables it speaks about, ``figures = ["4.7", "Tab
 "X.5"]`` (required; empty for a row no figure draws): those its ``source`` cites and those the
 text's paragraph it comes from discusses (tests/test_ledger.py checks both), so a figure's
 status answers to every row about it, unfavourable ones included.
+
+A row locates the text it scores: its ``statement`` quotes the paragraph (or the table or
+equation line) verbatim over at least eight words, or it sets ``quote``, a short verbatim
+excerpt of it of at least five words (optional otherwise). tests/test_ledger.py finds every
+row's paragraph in the text by one or the other, and checks that each figure the paragraph cites
+is among the row's ``figures``.
 
 Every row also carries ``expected = [low, high]``, the range its computed value is expected to
 stay in whatever the verdict (:func:`range_problem`): a regression guard, so a change that moves
@@ -107,6 +113,8 @@ class Claim:
     digits: int | None = None  # significant digits CLAIMS.md prints; default: what the
     # tolerance resolves, 3 to 6 (see printed_digits)
     expected: tuple[float, float] | None = None  # the range the computed value must stay in
+    quote: str | None = None  # verbatim words of the text's paragraph, where the statement
+    # does not quote it (see the module docstring)
 
 
 _QUOTE = re.compile(r"<<([A-Za-z_][\w.]*)(?::([^>]*))?>>")
@@ -175,6 +183,10 @@ def _claim(raw: dict, position: int, source: Path) -> Claim:
     if not isinstance(figures, list) or not all(isinstance(f, str) for f in figures):
         raise ValueError(f'{where}: figures must be a list of figure numbers such as "4.7"')
     raw = {**raw, "figures": tuple(figures)}
+    if "quote" in raw and (
+        not isinstance(raw["quote"], str) or len(re.findall(r"\w+", raw["quote"])) < 5
+    ):
+        raise ValueError(f"{where}: quote must be at least five words of the text")
     if "expected" in raw:
         low_high = raw["expected"]
         if (

@@ -1005,3 +1005,6 @@ def warm_up() -> None:
     one.sample(np.linspace(0.0, one.impact_angle, 3))
     many = ModifiedKeplerSolution(2000.0, np.array([0.8, 0.9]), 0.1, 500.0)
     many.time(many.impact_angle[:, None])
+    read_only = np.array([0.8, 0.9])  # for_launch passes launches' read-only columns
+    read_only.setflags(write=False)
+    ModifiedKeplerSolution(2000.0, read_only, 0.1, 500.0)

@@ -10,6 +10,10 @@ loudly, naming the entry):
   reproduces; ``deviates``: drawn, but a ledger row about it does not; ``partial``,
   ``pending``, ``not reproducible``); every status but ``reproduced`` needs a ``reason``;
 - ``caption`` (optional): one line naming the figure's case and model variant;
+- ``no_number`` (optional): for a figure no ledger row speaks about, what the text says of it
+  and that it states no number to check, so "reproduced" rests on the drawing alone by
+  necessity, not by omission (:func:`harp_analysis.gallery.status_problems` asks for it on
+  every reproduced figure without a row, and refuses it on one with rows);
 - ``extension`` (optional, default false): the project's own figure, beyond the dissertation,
   numbered outside its numbering (``X.1``, ``X.2``, ... written ``fig_x_1.png``). There is
   nothing in the text to reproduce, so its status is ``extension`` (drawn; its ``reason`` names
@@ -61,6 +65,7 @@ class RegistryEntry:
     reason: str
     caption: str = ""
     extension: bool = False
+    no_number: str = ""  # why no ledger row speaks about it (see the module docstring)
 
     @property
     def label(self) -> str:
@@ -70,7 +75,7 @@ class RegistryEntry:
 def _entry(raw: dict, position: int, source: Path) -> RegistryEntry:
     where = f"{source.name} entry {position} ({raw.get('number', '?')})"
     missing = [name for name in _FIELDS if name not in raw]
-    unknown = set(raw) - {*_FIELDS, "caption", "extension"}
+    unknown = set(raw) - {*_FIELDS, "caption", "extension", "no_number"}
     if unknown:
         raise ValueError(f"{where}: unknown field(s) {', '.join(sorted(unknown))}")
     if missing:
@@ -101,6 +106,7 @@ def _entry(raw: dict, position: int, source: Path) -> RegistryEntry:
         raw["reason"],
         raw.get("caption", ""),
         extension,
+        raw.get("no_number", ""),
     )
 
 

@@ -185,12 +185,25 @@ def appendix_a_launch_error_m(
     :func:`harp_analysis.comparisons.launch_error_m`); the macro prints its first position,
     two steps out, at the clock time 3 dt, so the MKS at that time is one step, about V0 dt,
     further along (:mod:`.appendix_a`). The sheet's dt is not printed."""
-    launch = baseline_chapter_4(elevation_deg, atmosphere=atmosphere)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", TruncatedFlightWarning)  # only the first rows matter
-        rows = appendix_a.simulate_appendix_a(launch, dt_s, max_time_s=2.0)
-    errors = position_errors(rows, mks.for_launch(launch))
+        _, errors = appendix_a_errors(dt_s, elevation_deg, atmosphere, max_time_s=2.0)
     return float(errors.total_geometric_m.iloc[0])
+
+
+def appendix_a_errors(
+    dt_s: float = 0.1,
+    elevation_deg: float = 45.0,
+    atmosphere: str = "three_layer",
+    max_time_s: float | None = None,
+):
+    """The rows Appendix A's macro prints for the baseline cone at ``elevation_deg`` (step
+    ``dt_s``, the listing's air, the Earth's spin off) and the three-term MKS's position errors
+    against them (:func:`harp_analysis.mks_error.position_errors`)."""
+    launch = baseline_chapter_4(elevation_deg, atmosphere=atmosphere)
+    limit = {} if max_time_s is None else {"max_time_s": max_time_s}
+    rows = appendix_a.simulate_appendix_a(launch, dt_s, **limit)
+    return rows, position_errors(rows, mks.for_launch(launch))
 
 
 def variant_improved_share(variant: str) -> float:
