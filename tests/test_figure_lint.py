@@ -22,7 +22,7 @@ def figures_dir(tmp_path, monkeypatch):
 
 
 def _clean_figure():
-    fig, ax = plotting.new_figure(figsize=(plotting.FULL_WIDTH_IN, 3.0))
+    fig, ax = plotting.new_figure(figsize=(plotting.FULL_WIDTH_IN, 3.0), layout="constrained")
     x = np.linspace(0.0, 10.0, 50)
     ax.plot(x, np.sin(x), label="a curve", **plotting.style("3DOF"))
     ax.set_xlabel("range (km)")

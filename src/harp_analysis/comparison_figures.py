@@ -39,7 +39,7 @@ def compare_models(models: dict, x: str, y: str, *, scale_x=1e-3, scale_y=1e-3, 
                    ylabel=""):  # fmt: skip
     """One panel with each of ``models`` (name -> its flight table) drawn as column ``y``
     against column ``x``, in the engine's style (:func:`plotting.style`); returns the figure."""
-    fig, ax = new_figure(figsize=(FULL_WIDTH_IN, 3.6))
+    fig, ax = new_figure(figsize=(FULL_WIDTH_IN, 3.6), layout="constrained")
     for label, table in models.items():
         ax.plot(table[x] * scale_x, table[y] * scale_y, label=label, **plotting.style(label))
     ax.set_xlabel(xlabel)
@@ -106,7 +106,7 @@ def error_figure(elevations_deg, *, lower: str | None = None, **variant):
     the apogees times 2.5, where the errors before re-entry can be read; ``"cross range"``,
     the 3DOF's cross range, which the in-plane eq 4.7 leaves out (the MKS is planar)."""
     tall = lower is not None
-    fig, axes = new_figure(2 if tall else 1, 1, sharex=True, squeeze=False,
+    fig, axes = new_figure(2 if tall else 1, 1, sharex=True, squeeze=False, layout="constrained",
                            figsize=(FULL_WIDTH_IN, 5.6 if tall else 3.8),
                            gridspec_kw={"height_ratios": [3, 2] if tall else [1]})  # fmt: skip
     ax = axes[0, 0]

@@ -100,7 +100,7 @@ def draw_round_figure(site: str, round_number: int):
     if radar is None:
         fig.text(
             0.5,
-            -0.02,
+            0.01,  # on the page, which is the figure: nothing outside it is saved
             f"radar data for round {number} are not in the dissertation "
             "(see data/harp/radar/README.md)",
             ha="center",

@@ -14,14 +14,15 @@ Styles. Series are told apart without colour, and each colour means one thing ac
   marker of its own; such curves are also labelled directly (:func:`label_lines`).
 
 Saving. :func:`save_figure` writes each figure twice, a vector PDF and a 300 dpi PNG, under
-the registry's name, exactly :data:`FULL_WIDTH_IN` wide (the page is the figure's own size, never
-a box cropped to the ink: :func:`new_figure` lays the figure out to fit it, and notes belong in
-the registry's caption, not around the axes), after :func:`figure_defects` finds nothing wrong
-with it (labels over labels or over curves, data clipped silently, ink off the page), with no
-software or time stamps, through a temporary file renamed into place: an interrupted run never
-leaves a truncated figure. The PDF's fonts are embedded as TrueType (Type 42), subset without
-the tables a PDF never reads, and mathtext is laid out once per save (:func:`_shortcuts`): a
-save takes about 70 % of the time matplotlib's own ways take (benchmarks/bench_figures.py).
+the registry's name, exactly :data:`FULL_WIDTH_IN` wide (the page is the figure's own size,
+never a box cropped to the ink: everything drawn must fit it, as constrained layout makes it,
+and notes belong in the registry's caption, not around the axes), once :func:`figure_defects`
+finds nothing wrong with it (labels over labels or over curves, data clipped silently, ink off
+the page), with no software or time stamps, through a temporary file renamed into place: an
+interrupted run never leaves a truncated figure. The PDF's fonts are embedded as TrueType
+(Type 42), subset without the tables a PDF never reads, and mathtext is laid out once per save
+(:func:`_shortcuts`): a save takes about 70 % of the time matplotlib's own ways take
+(benchmarks/bench_figures.py).
 """
 
 from __future__ import annotations
@@ -163,11 +164,11 @@ def label_lines(ax, lines, labels, *, at: float = 0.85, fontsize: float = 8.0):
 
 def new_figure(nrows: int = 1, ncols: int = 1, **kwargs):
     """``plt.subplots`` in the house style, which stays in force for what is drawn on the
-    figure afterwards (legends, lines); returns ``(fig, axes)``. Laid out by matplotlib's
-    constrained layout unless ``layout`` says otherwise, so that the axes' labels, ticks and
-    legends fit the page :func:`save_figure` writes, which is the figure's own size."""
+    figure afterwards (legends, lines); returns ``(fig, axes)``. The page :func:`save_figure`
+    writes is the figure's own size, so what is drawn must fit it: ``layout="constrained"``
+    fits the axes' labels, ticks and legends (a figure laid out by hand, ``subplots_adjust``,
+    must fit them itself; :func:`figure_defects` finds ink off the page)."""
     plt.rcParams.update(HOUSE_STYLE)  # type: ignore[arg-type]  # keys checked at run time
-    kwargs.setdefault("layout", "constrained")
     return plt.subplots(nrows, ncols, **kwargs)
 
 
