@@ -73,6 +73,16 @@ def test_two_labels_over_one_another_are_caught():
                                             "'30 deg' overlaps '45 deg'"]  # fmt: skip
 
 
+def test_two_panels_labels_over_one_another_are_caught():
+    """As in a pair of panels laid out by hand, each x label wider than its panel."""
+    fig, (left, right) = plotting.new_figure(1, 2, figsize=(plotting.FULL_WIDTH_IN, 3.0))
+    for ax in (left, right):
+        ax.set_xlabel("distance from the nominal 3DOF flight (km)")
+    (defect,) = plotting.figure_defects(fig)
+    assert defect == ("'distance from the nominal 3DOF flight (km)' overlaps "
+                      "'distance from the nominal 3DOF flight (km)'")  # fmt: skip
+
+
 def test_a_label_over_a_curve_is_caught():
     """The old way of Fig 4.15: the off-scale note written across the curve it names."""
     fig, ax = _clean_figure()

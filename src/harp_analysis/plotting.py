@@ -257,8 +257,9 @@ def _off_the_page(label, renderer) -> bool:
 def figure_defects(fig) -> list[str]:
     """What a reader would trip on in ``fig``, as drawn: its width other than
     :data:`FULL_WIDTH_IN`; ink off the page; within an axes, two labels (texts, annotations,
-    the legend) over one another, or a label over a curve (:func:`label_overlaps`); data
-    clipped silently (:func:`_data_outside_limits`). Empty when there is none."""
+    the legend) over one another, or a label over a curve (:func:`label_overlaps`); the labels
+    of different panels over one another (:func:`_decorations_overlapping`); data clipped
+    silently (:func:`_data_outside_limits`). Empty when there is none."""
     found = []
     if abs(fig.get_figwidth() - FULL_WIDTH_IN) > 1e-9:
         found.append(f"the figure is {fig.get_figwidth():g} in wide, not {FULL_WIDTH_IN:g} in")
@@ -276,6 +277,24 @@ def figure_defects(fig) -> list[str]:
     for text in fig.texts:
         if text.get_text().strip() and _off_the_page(text, renderer):
             found.append(f"figure text {_name(text)} runs off the page")
+    found += _decorations_overlapping(fig, renderer)
+    return found
+
+
+def _decorations_overlapping(fig, renderer) -> list[str]:
+    """Labels of different axes, or of the figure, over one another: one panel's axis label
+    over its neighbour's, a figure legend or title over an axes' label."""
+    owned = [(ax, label) for ax in fig.axes for label in
+             (ax.title, ax.xaxis.label, ax.yaxis.label) if label.get_visible() and
+             label.get_text().strip()]  # fmt: skip
+    owned += [(fig, text) for text in fig.texts if text.get_text().strip()]
+    owned += [(fig, legend) for legend in fig.legends]
+    found = []
+    for i, (owner, label) in enumerate(owned):
+        for other_owner, other in owned[i + 1 :]:
+            if owner is not other_owner or owner is fig:
+                if _box(label, renderer).overlaps(_box(other, renderer)):
+                    found.append(f"{_name(label)} overlaps {_name(other)}")
     return found
 
 
