@@ -5,18 +5,24 @@ Styles. Series are told apart without colour, and each colour means one thing ac
 
 - the model or engine has a colour of the Okabe-Ito palette (safe for colour-blind readers)
   and a line style: 3DOF solid blue, 6DOF dashed orange, MLT dash-dot green, MKS dotted
-  vermillion (the project's improved MKS sky blue, dash-dot-dotted); measured data are black
-  markers, the text's values grey;
+  vermillion (the project's improved MKS sky blue, dash-dot-dotted); a quantity of one model
+  (its air, its error, its series length) takes that model's colour; black is measured data and
+  the exact references a figure is read against (the 1976 standard atmosphere, a straight
+  line, conical-flow values), grey the text's own values and formulas;
 - the projectile has a marker: HP circle, LP square, the baseline cone triangle;
 - the gun elevation has a shade of reddish purple, light to dark from 30 to 85 deg, and a
   marker of its own; such curves are also labelled directly (:func:`label_lines`).
 
 Saving. :func:`save_figure` writes each figure twice, a vector PDF and a 300 dpi PNG, under
-the registry's name, sized as drawn (:data:`FULL_WIDTH_IN`, :data:`COLUMN_WIDTH_IN`), with no
-software or time stamps, through a temporary file renamed into place: an interrupted run never
-leaves a truncated figure. The PDF's fonts are embedded as TrueType (Type 42), subset without
-the tables a PDF never reads, and mathtext is laid out once per save (:func:`_shortcuts`): a
-save takes about 70 % of the time matplotlib's own ways take (benchmarks/bench_figures.py).
+the registry's name, exactly :data:`FULL_WIDTH_IN` wide (the page is the figure's own size,
+never a box cropped to the ink: everything drawn must fit it, as constrained layout makes it,
+and notes belong in the registry's caption, not around the axes), once :func:`figure_defects`
+finds nothing wrong with it (labels over labels or over curves, data clipped silently, ink off
+the page), with no software or time stamps, through a temporary file renamed into place: an
+interrupted run never leaves a truncated figure. The PDF's fonts are embedded as TrueType
+(Type 42), subset without the tables a PDF never reads, and mathtext is laid out once per save
+(:func:`_shortcuts`): a save takes about 70 % of the time matplotlib's own ways take
+(benchmarks/bench_figures.py).
 """
 
 from __future__ import annotations
@@ -35,6 +41,8 @@ from fontTools.ttLib import TTFont
 from matplotlib.backends import _backend_pdf_ps
 from matplotlib.figure import Figure
 from matplotlib.mathtext import MathTextParser
+from matplotlib.text import Text
+from matplotlib.transforms import Bbox
 
 from .paths import write_atomically
 from .registry import figure_file
@@ -51,6 +59,8 @@ __all__ = [
     "elevation_style",
     "label_lines",
     "new_figure",
+    "figure_defects",
+    "label_overlaps",
     "save_figure",
     "save_table",
 ]
@@ -71,7 +81,7 @@ HOUSE_STYLE: dict[str, Any] = {
     "legend.frameon": False,
     "lines.linewidth": 1.6,
     "savefig.dpi": DPI,
-    "savefig.bbox": "tight",
+    "savefig.bbox": "standard",  # the page is the figure: FULL_WIDTH_IN wide, whatever it holds
     "path.simplify": False,
     "pdf.fonttype": 42,  # TrueType in the PDF: editable text
 }
@@ -154,9 +164,138 @@ def label_lines(ax, lines, labels, *, at: float = 0.85, fontsize: float = 8.0):
 
 def new_figure(nrows: int = 1, ncols: int = 1, **kwargs):
     """``plt.subplots`` in the house style, which stays in force for what is drawn on the
-    figure afterwards (legends, lines); returns ``(fig, axes)``."""
+    figure afterwards (legends, lines); returns ``(fig, axes)``. The page :func:`save_figure`
+    writes is the figure's own size, so what is drawn must fit it: ``layout="constrained"``
+    fits the axes' labels, ticks and legends (a figure laid out by hand, ``subplots_adjust``,
+    must fit them itself; :func:`figure_defects` finds ink off the page)."""
     plt.rcParams.update(HOUSE_STYLE)  # type: ignore[arg-type]  # keys checked at run time
     return plt.subplots(nrows, ncols, **kwargs)
+
+
+#: How far (points) ink may overlap before :func:`figure_defects` calls it a defect: the
+#: antialiased edge of a glyph or line, not a visible overlap.
+_OVERLAP_TOLERANCE_PT = 0.5
+
+
+def _texts(ax) -> list:
+    """The labels drawn inside or beside ``ax``: its texts and annotations with text, and its
+    legend."""
+    texts = [t for t in ax.texts if t.get_visible() and t.get_text().strip()]
+    legend = ax.get_legend()
+    return texts + ([legend] if legend is not None and legend.get_visible() else [])
+
+
+def _name(artist) -> str:
+    if hasattr(artist, "get_text"):
+        return repr(artist.get_text().replace("\n", " "))
+    if hasattr(artist, "get_label") and not artist.get_label().startswith("_"):
+        return f"{type(artist).__name__} {artist.get_label()!r}"
+    return type(artist).__name__
+
+
+def _shrunk(box, points: float, dpi: float):
+    pad = points * dpi / 72.0
+    return box.padded(-pad) if box.width > 2 * pad and box.height > 2 * pad else box
+
+
+def _data_outside_limits(ax) -> list[str]:
+    """Series ``ax`` clips silently: a line drawn wholly outside the axes' limits, or a point
+    of a marker-only series (one shown only by its markers) outside them."""
+    found = []
+    view = ax.viewLim
+    for line in ax.lines:
+        if not line.get_visible() or len(line.get_xydata()) == 0:
+            continue
+        if line.get_transform() != ax.transData:  # axes or mixed coordinates (axhline): inside
+            continue
+        points = ax.transScale.transform(line.get_xydata())
+        limits = ax.transScale.transform([[view.x0, view.y0], [view.x1, view.y1]])
+        low, high = limits.min(axis=0), limits.max(axis=0)
+        finite = points[(points == points).all(axis=1)]
+        inside = ((finite >= low) & (finite <= high)).all(axis=1)
+        marker_only = line.get_linestyle() in ("None", "none", "", " ")
+        if len(finite) and not inside.any():
+            found.append(f"{_name(line)} lies wholly outside the axes' limits")
+        elif marker_only and not inside.all():
+            found.append(
+                f"{_name(line)}: {int((~inside).sum())} of its points outside the axes' limits"
+            )
+    return found
+
+
+def _box(label, renderer):
+    """The box of ``label``'s ink: a text's own (an annotation's would hold its arrow too)."""
+    extent = Text.get_window_extent if isinstance(label, Text) else type(label).get_window_extent
+    return _shrunk(extent(label, renderer), _OVERLAP_TOLERANCE_PT, label.figure.dpi)
+
+
+def label_overlaps(ax, label, renderer, *, labels=None) -> list[str]:
+    """What ``label`` (a text, annotation or legend of ``ax``, laid out by ``renderer``) lies
+    over: each of ``labels`` (default: every other label of ``ax``) whose box overlaps its box,
+    and each curve of ``ax`` whose visible (clipped) part crosses it, as phrases."""
+    box = _box(label, renderer)
+    found = []
+    for other in _texts(ax) if labels is None else labels:
+        if other is not label and box.overlaps(_box(other, renderer)):
+            found.append(f"overlaps {_name(other)}")
+    for line in ax.lines:
+        if not line.get_visible() or line.get_linestyle() in ("None", "none", "", " "):
+            continue
+        seen = Bbox.intersection(box, ax.bbox) if line.get_clip_on() else box
+        path = line.get_transform().transform_path(line.get_path())
+        if seen is not None and path.intersects_bbox(seen, filled=False):
+            found.append(f"sits over {_name(line)}")
+    return found
+
+
+def _off_the_page(label, renderer) -> bool:
+    page = label.figure.bbox.padded(_OVERLAP_TOLERANCE_PT * label.figure.dpi / 72.0)
+    box = _box(label, renderer)
+    return not (page.contains(box.x0, box.y0) and page.contains(box.x1, box.y1))
+
+
+def figure_defects(fig) -> list[str]:
+    """What a reader would trip on in ``fig``, as drawn: its width other than
+    :data:`FULL_WIDTH_IN`; ink off the page; within an axes, two labels (texts, annotations,
+    the legend) over one another, or a label over a curve (:func:`label_overlaps`); the labels
+    of different panels over one another (:func:`_decorations_overlapping`); data clipped
+    silently (:func:`_data_outside_limits`). Empty when there is none."""
+    found = []
+    if abs(fig.get_figwidth() - FULL_WIDTH_IN) > 1e-9:
+        found.append(f"the figure is {fig.get_figwidth():g} in wide, not {FULL_WIDTH_IN:g} in")
+    fig.draw_without_rendering()
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        where = f"axes {ax.get_title() or ax.get_ylabel() or fig.axes.index(ax)!r}"
+        labels = _texts(ax)
+        for i, label in enumerate(labels):
+            if _off_the_page(label, renderer):
+                found.append(f"{where}: {_name(label)} runs off the page")
+            overlaps = label_overlaps(ax, label, renderer, labels=labels[i + 1 :])
+            found += [f"{where}: {_name(label)} {overlap}" for overlap in overlaps]
+        found += [f"{where}: {defect}" for defect in _data_outside_limits(ax)]
+    for text in fig.texts:
+        if text.get_text().strip() and _off_the_page(text, renderer):
+            found.append(f"figure text {_name(text)} runs off the page")
+    found += _decorations_overlapping(fig, renderer)
+    return found
+
+
+def _decorations_overlapping(fig, renderer) -> list[str]:
+    """Labels of different axes, or of the figure, over one another: one panel's axis label
+    over its neighbour's, a figure legend or title over an axes' label."""
+    owned = [(ax, label) for ax in fig.axes for label in
+             (ax.title, ax.xaxis.label, ax.yaxis.label) if label.get_visible() and
+             label.get_text().strip()]  # fmt: skip
+    owned += [(fig, text) for text in fig.texts if text.get_text().strip()]
+    owned += [(fig, legend) for legend in fig.legends]
+    found = []
+    for i, (owner, label) in enumerate(owned):
+        for other_owner, other in owned[i + 1 :]:
+            if owner is not other_owner or owner is fig:
+                if _box(label, renderer).overlaps(_box(other, renderer)):
+                    found.append(f"{_name(label)} overlaps {_name(other)}")
+    return found
 
 
 # Metadata matplotlib would otherwise fill with its version and the time.
@@ -250,13 +389,17 @@ def save_figure(fig, number: str) -> Path:
     """Save ``fig`` as figure ``number`` (e.g. ``"2.1"`` -> ``figures/fig_2_1.png`` and
     ``fig_2_1.pdf``); returns the PNG's path.
 
-    The file name comes from the figure registry, so only registered figures can be saved.
+    The file name comes from the figure registry, so only registered figures can be saved,
+    and only if :func:`figure_defects` finds none (it raises ``ValueError`` naming them).
     Rendered by Agg (PNG, 300 dpi) and the PDF backend whatever the interactive backend, with
     no software or time stamps: saving the same figure twice gives byte-identical files.
     """
     if not isinstance(fig, Figure):
         raise TypeError(f"fig must be a matplotlib Figure; got {type(fig).__name__}")
     png = figure_file(number)
+    defects = figure_defects(fig)
+    if defects:
+        raise ValueError(f"figure {number} is not fit to print: " + "; ".join(defects))
     house_style = plt.rc_context(HOUSE_STYLE)  # type: ignore[arg-type]  # keys checked at run time
     with house_style, _shortcuts():
         for path, backend in ((png, "agg"), (png.with_suffix(".pdf"), "pdf")):
