@@ -161,7 +161,7 @@ def _claim(raw: dict, position: int, source: Path) -> Claim:
         raise ValueError(f"{where}: compute must read 'module:function', got {raw['compute']!r}")
     figures = raw["figures"]
     if not isinstance(figures, list) or not all(isinstance(f, str) for f in figures):
-        raise ValueError(f"{where}: figures must be a list of figure numbers such as \"4.7\"")
+        raise ValueError(f'{where}: figures must be a list of figure numbers such as "4.7"')
     raw = {**raw, "figures": tuple(figures)}
     if "expected" in raw:
         low_high = raw["expected"]
