@@ -283,7 +283,7 @@ PROBES: dict[str, tuple[str, Err | Warned | Ok]] = {
     "bootstrap statistic": ("harp_confidence.bootstrap_interval([1.0, 2.0, 4.0], 'median')", Err("statistic")),
     "residual intervals site": ("harp_confidence.residual_intervals('mars')", Err("unknown site 'mars'")),
     "quantisation step negative": ("harp_confidence.uniform_quantisation_std(-1.0)", Err("step must lie in")),
-    "scatter budget std negative": ("harp_confidence.scatter_budget('yuma', speed_std_m_s=-1.0, resamples=99)", Err("speed_std_m_s")),
+    "scatter budget std negative": ("harp_confidence.scatter_budget('yuma', speed_std_m_s=-1.0)", Err("speed_std_m_s")),
     "surface densities": ("harp_confidence.surface_densities_kg_m3('moon')", Err("densities")),
     # --- Chapter 4's comparisons, the improved MKS's judging, the MLT's validation --------
     "comparison projectile": ("comparisons.chapter_4_launch('XX', 45.0)", Err("unknown projectile 'XX'")),

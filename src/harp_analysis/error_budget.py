@@ -37,7 +37,7 @@ import numpy as np
 import pandas as pd
 from scipy.stats import norm
 
-from . import earth, eci, harp
+from . import earth, eci, harp, harp_confidence
 from .caching import cached_copies
 from .harp_data import FOOT_M
 from .launch import Launch, Launches, baseline_chapter_4, chapter_2
@@ -73,6 +73,8 @@ __all__ = [
     "median_required_pointing_mrad",
     "dispersion_over_model_error",
     "harp_spread_over_model_error",
+    "SpreadOverModelError",
+    "harp_spread_interval_over_model_error",
 ]
 
 _MRAD_DEG = math.degrees(1e-3)
@@ -560,3 +562,37 @@ def harp_spread_over_model_error(site: str = "barbados") -> float:
     spread is than the MKS's own error (Ch. 4 A)."""
     spread_m = 1e3 * harp.residual_statistic(site, "std", include_duplicate=False)
     return float(spread_m / model_error(martlet_at_barbados())["apogee_m"])
+
+
+@dataclass(frozen=True)
+class SpreadOverModelError:
+    """A site's residual spread over the MKS's apogee error, the spread with its interval
+    (:func:`harp_spread_interval_over_model_error`)."""
+
+    site: str
+    spread_m: harp_confidence.Interval  # the residuals' sd and its interval (std_interval)
+    model_error_m: float  # the ECI MKS's apogee error for the representative Martlet
+    coverage: harp_confidence.Coverage  # the interval's, simulated on the residuals' shape
+    coverage_normal: harp_confidence.Coverage  # and on normal data
+
+    @property
+    def ratio(self) -> harp_confidence.Interval:
+        """The spread over the model error, and its interval's ends over it."""
+        return harp_confidence.Interval(*(s / self.model_error_m for s in self.spread_m))
+
+
+def harp_spread_interval_over_model_error(
+    site: str = "barbados", confidence: float = 0.95
+) -> SpreadOverModelError:
+    """:func:`harp_spread_over_model_error` with the spread's sampling uncertainty: the
+    residuals' standard deviation with its ``confidence`` interval
+    (:func:`harp_confidence.std_interval`, 22 rounds) over the same model error, and how often
+    such an interval holds the truth at a site's rounds (:func:`harp_confidence.coverage`)."""
+    spread = harp_confidence.residual_intervals(site, confidence=confidence).loc["std"]
+    return SpreadOverModelError(
+        site,
+        harp_confidence.Interval(*(float(spread[f"{x}_m"]) for x in ("estimate", "low", "high"))),
+        float(model_error(martlet_at_barbados())["apogee_m"]),
+        harp_confidence.coverage("std", "bonett", "residuals", confidence=confidence),
+        harp_confidence.coverage("std", "bonett", "normal", confidence=confidence),
+    )

@@ -18,6 +18,7 @@ apart.
 
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass
 from functools import cache, partial
@@ -26,14 +27,14 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import minimize_scalar
 
-from . import earth, mks_improved
+from . import earth, eci, error_budget, mks, mks_improved
 from .caching import cached_copies
 from .comparisons import BASELINE_ELEVATIONS_DEG
 from .launch import Launch, baseline_chapter_4, chapter_2
 from .mks_improved import Calibration
-from .projectiles import HP, LP
+from .projectiles import BASELINE, HP, LP
 from .sweeps import sweep
-from .threedof import simulate_3dof
+from .threedof import fly_3dof, simulate_3dof
 from .trajectory import rotate_about_axis
 from .validation import ModelValidityWarning, check_choice
 
@@ -55,6 +56,18 @@ __all__ = [
     "judged_improvement",
     "map_shares",
     "error_differences_m",
+    "BROAD_SPEEDS_M_S",
+    "BROAD_ELEVATIONS_DEG",
+    "BROAD_MEASURES",
+    "BROAD_SPLITS",
+    "broad_projectiles",
+    "BroadLaunch",
+    "broad_launches",
+    "broad_judgement",
+    "broad_errors",
+    "BroadImprovement",
+    "broad_improvement",
+    "broad_band_shares",
 ]
 
 _SPIN = earth.ROTATION_RATE_RAD_S
@@ -304,19 +317,24 @@ def judged_improvement(measure: str = "impact_miss_m", earth: str = "both") -> f
     return float(rms["improved"] / rms["dissertation"])
 
 
-def map_shares(error_map: pd.DataFrame) -> pd.Series:
-    """What :func:`error_map` says, as shares of its points: where the improved MKS has the
-    smaller impact miss and largest error, over all points and inside its validity band
-    (:data:`mks_improved.AIR_MOMENTUM_SHARE_RANGE`, drawn from this map), with the points inside
-    and those where it has no solution."""
+def map_shares(
+    error_map: pd.DataFrame, measures: tuple[str, ...] = ("impact_miss_m", "max_error_m")
+) -> pd.Series:
+    """What :func:`error_map` (or :func:`broad_judgement`) says, as shares of its points: where
+    the improved MKS has the smaller magnitude of each of ``measures``, over all points, inside
+    its validity band (:data:`mks_improved.AIR_MOMENTUM_SHARE_RANGE`, drawn from the map) and
+    outside it, with the points inside and those where it has no solution."""
     low, high = mks_improved.AIR_MOMENTUM_SHARE_RANGE
     inside = (error_map.air_momentum_share > low) & (error_map.air_momentum_share <= high)
     shares: dict[str, float] = {"points": len(error_map), "inside": int(inside.sum())}
-    for measure in ("impact_miss_m", "max_error_m"):
-        better = error_map[f"improved_{measure}"] < error_map[f"dissertation_{measure}"]
+    for measure in measures:
+        better = np.abs(error_map[f"improved_{measure}"]) < np.abs(
+            error_map[f"dissertation_{measure}"]
+        )
         shares[f"better_{measure}"] = float(better.mean())
         shares[f"better_{measure}_inside"] = float(better[inside].mean())
-    shares["unsolved"] = int(error_map.improved_impact_miss_m.isna().sum())
+        shares[f"better_{measure}_outside"] = float(better[~inside].mean())
+    shares["unsolved"] = int(error_map[f"improved_{measures[0]}"].isna().sum())
     return pd.Series(shares)
 
 
@@ -331,3 +349,248 @@ def error_differences_m(error_map: pd.DataFrame) -> pd.DataFrame:
             for measure in ("impact_miss_m", "max_error_m")
         }
     )
+
+
+# --- the broad judging set (issue 26) ------------------------------------------------------------
+BROAD_SPEEDS_M_S = (1500.0, 2000.0, 2500.0, 3000.0, 3500.0)
+BROAD_ELEVATIONS_DEG = (20.0, 35.0, 50.0, 65.0, 85.0)
+#: Signed errors of the MKS against the 3DOF (MKS minus 3DOF; the impact miss is a distance).
+BROAD_MEASURES = ("apogee_error_m", "impact_range_error_m", "impact_time_error_s", "impact_miss_m")
+#: How :func:`broad_errors` groups the launches: the text's validity (eq 3.22's beta at most
+#: mks.BETA_VALIDITY_LIMIT, "inside", or not), the improved MKS's own beta warning
+#: (mks_improved.MAX_JUDGED_BETA), the Earth, the day's air, the projectile.
+BROAD_SPLITS = ("all", "validity", "warning", "earth", "air", "projectile")
+_AIRS = ("standard", "told", "untold")
+_BROAD_SEED = 26
+_BROAD_LATITUDES_DEG = (-60.0, 60.0)
+
+
+def broad_projectiles() -> dict:
+    """The broad set's projectiles by name: HP and LP (Chapter 2), the baseline cone (Chapter
+    4) and the Martlet 2C as Chapter 6 flies it from Barbados (a constant Cd0 A)."""
+    martlet = error_budget.martlet_at_barbados().projectile
+    return {"HP": HP, "LP": LP, "baseline": BASELINE, "Martlet": martlet}
+
+
+@dataclass(frozen=True)
+class BroadLaunch:
+    """One launch of the broad set: what the 3DOF flies (``flown``, its day's air included),
+    what the MKS is given (``told``: the same, or without the day's air), and its labels."""
+
+    projectile: str
+    flown: Launch
+    told: Launch
+    earth: str  # "still" or "turning"
+    air: str  # "standard", "told" or "untold"
+
+
+def broad_launches(
+    speeds_m_s: tuple[float, ...] = BROAD_SPEEDS_M_S,
+    elevations_deg: tuple[float, ...] = BROAD_ELEVATIONS_DEG,
+    projectiles: tuple[str, ...] = ("HP", "LP", "baseline", "Martlet"),
+    seed: int = _BROAD_SEED,
+) -> tuple[BroadLaunch, ...]:
+    """Every projectile x speed x elevation on the still and on the turning Earth, each in the
+    standard air and on one day's air told and not told to the MKS. A turning-Earth launch's
+    latitude (uniform in -60..60 deg) and bearing (uniform) and each launch's day (density
+    change and temperature change, normal at :data:`error_budget.CHAPTER_7B`'s sds) are drawn
+    from ``seed``, one per projectile x speed x elevation x Earth, in that order."""
+    chosen = broad_projectiles()
+    sizes = {u.field: u.sd for u in error_budget.CHAPTER_7B}
+    rng = np.random.default_rng(seed)
+    launches = []
+    for name in projectiles:
+        for speed in speeds_m_s:
+            for elevation in elevations_deg:
+                for turning in (False, True):
+                    latitude, bearing = rng.uniform(*_BROAD_LATITUDES_DEG), rng.uniform(0, 360)
+                    standard = Launch(chosen[name], speed, elevation)
+                    if turning:
+                        standard = standard.but(
+                            latitude_deg=latitude, bearing_deg=bearing, rotation_rate_rad_s=_SPIN
+                        )
+                    day = standard.but(
+                        **{
+                            field: rng.normal(0.0, sizes[field])
+                            for field in ("density_change_fraction", "temperature_change_k")
+                        }
+                    )
+                    earth_name = "turning" if turning else "still"
+                    launches += [
+                        BroadLaunch(name, standard, standard, earth_name, "standard"),
+                        BroadLaunch(name, day, day, earth_name, "told"),
+                        BroadLaunch(name, day, standard, earth_name, "untold"),
+                    ]
+    return tuple(launches)
+
+
+def _mks_errors(solution: mks_improved.ImprovedSolution, flights, index: int) -> dict:
+    return {
+        "apogee_error_m": solution.apogee_altitude_m - flights.apogee_altitude_m[index],
+        "impact_range_error_m": solution.impact_range_m[0] - flights.range_m[index],
+        "impact_time_error_s": solution.impact_time_s - flights.time_of_flight_s[index],
+        "impact_miss_m": float(
+            np.linalg.norm(solution.impact_point_m - flights.end_position_m[:, index])
+        ),
+    }
+
+
+def _judged_row(entry: BroadLaunch, flights, index: int, fitted: Calibration) -> dict:
+    told = entry.told
+    beta = float(eci.solution_for_launch(told, warn=False).beta.flat[0])
+    row = {
+        "projectile": entry.projectile,
+        "speed_m_s": told.speed_m_s,
+        "elevation_deg": told.elevation_deg,
+        "latitude_deg": told.latitude_deg,
+        "bearing_deg": told.bearing_deg,
+        "earth": entry.earth,
+        "air": entry.air,
+        "density_change_fraction": entry.flown.density_change_fraction,
+        "temperature_change_k": entry.flown.temperature_change_k,
+        "beta": beta,
+        "validity": "inside" if beta <= mks.BETA_VALIDITY_LIMIT else "outside",
+        "warning": "warned" if beta > mks_improved.MAX_JUDGED_BETA else "quiet",
+        "air_momentum_share": mks_improved.air_momentum_share(told),
+    }
+    for variant in mks_improved.VARIANTS:
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ModelValidityWarning)  # the columns say
+                errors = _mks_errors(mks_improved.flight(told, variant, fitted), flights, index)
+        except ValueError:  # no re-entry solution (its error names why)
+            errors = dict.fromkeys(BROAD_MEASURES, np.nan)
+        row |= {f"{variant}_{measure}": value for measure, value in errors.items()}
+    return row
+
+
+@cached_copies
+def broad_judgement(
+    speeds_m_s: tuple[float, ...] = BROAD_SPEEDS_M_S,
+    elevations_deg: tuple[float, ...] = BROAD_ELEVATIONS_DEG,
+    projectiles: tuple[str, ...] = ("HP", "LP", "baseline", "Martlet"),
+    seed: int = _BROAD_SEED,
+) -> pd.DataFrame:
+    """Both variants against the 3DOF on :func:`broad_launches`, one row per launch: its
+    labels, eq 3.22's beta of the launch the MKS is given (the dissertation's ECI MKS's) with
+    its ``validity`` and ``warning`` groups (:data:`BROAD_SPLITS`), the air's share of its
+    angular momentum, and each variant's :data:`BROAD_MEASURES` as ``<variant>_<measure>``
+    (NaN where a variant has no solution). The 3DOF flies each projectile and Earth as one
+    compiled batch; the calibration is :func:`calibration`'s."""
+    launches = broad_launches(speeds_m_s, elevations_deg, projectiles, seed)
+    fitted = calibration()
+    rows: list[dict | None] = [None] * len(launches)
+    groups: dict[tuple, list[int]] = {}
+    for index, entry in enumerate(launches):
+        groups.setdefault((entry.projectile, entry.earth), []).append(index)
+    for indices in groups.values():
+        flights = fly_3dof([launches[i].flown for i in indices])
+        if not flights.impact.all():
+            raise RuntimeError("a broad-set 3DOF flight did not land within its time limit")
+        for position, index in enumerate(indices):
+            rows[index] = _judged_row(launches[index], flights, position, fitted)
+    return pd.DataFrame(rows)
+
+
+def _solved(judged: pd.DataFrame) -> pd.Series:
+    """Launches where both variants have a solution: the pairs compared."""
+    return judged[[f"{v}_{BROAD_MEASURES[0]}" for v in mks_improved.VARIANTS]].notna().all(axis=1)
+
+
+def _rms(values: np.ndarray) -> float:
+    """Root-mean-square of ``values`` (NaN if there are none)."""
+    return float(np.sqrt(np.mean(values**2))) if values.size else math.nan
+
+
+def broad_errors(split: str = "all", judged: pd.DataFrame | None = None) -> pd.DataFrame:
+    """Root-mean-square and median magnitude of each variant's :data:`BROAD_MEASURES` over the
+    broad set's launches that both variants solve (``judged``, :func:`broad_judgement` by
+    default), grouped by ``split`` (:data:`BROAD_SPLITS`): index (group, variant), columns
+    ``<measure>_rms``, ``<measure>_median``, ``launches`` and ``unsolved`` (the group's
+    launches the improved MKS has no solution for, left out of both variants' statistics)."""
+    check_choice(split, "split", BROAD_SPLITS)
+    judged = broad_judgement() if judged is None else judged
+    groups = judged.assign(all="all")[split]
+    solved = _solved(judged)
+    rows = {}
+    for group in sorted(groups.unique()):
+        members = judged[(groups == group) & solved]
+        for variant in mks_improved.VARIANTS:
+            row = {}
+            for measure in BROAD_MEASURES:
+                values = np.abs(members[f"{variant}_{measure}"].to_numpy())
+                row[f"{measure}_rms"] = _rms(values)
+                row[f"{measure}_median"] = float(np.median(values)) if values.size else np.nan
+            row["launches"] = len(members)
+            row["unsolved"] = int(((groups == group) & ~solved).sum())
+            rows[group, variant] = row
+    return pd.DataFrame(rows).T.rename_axis([split, "variant"])
+
+
+@dataclass(frozen=True)
+class BroadImprovement:
+    """One measure and statistic of the improved MKS over the dissertation's on a subset of
+    the broad set (:func:`broad_improvement`)."""
+
+    measure: str
+    statistic: str
+    improved: float  # in the measure's unit
+    dissertation: float
+    launches: int  # both variants solved
+    unsolved: int  # the improved MKS has no solution
+    better_share: float  # of the launches, where the improved MKS's magnitude is smaller
+
+    @property
+    def ratio(self) -> float:
+        return self.improved / self.dissertation
+
+
+def broad_improvement(
+    measure: str = "impact_range_error_m",
+    statistic: str = "rms",
+    *,
+    validity: str = "all",
+    earth: str = "both",
+    air: str = "all",
+    judged: pd.DataFrame | None = None,
+) -> BroadImprovement:
+    """``statistic`` ("rms" or "median" of the magnitude) of ``measure`` on the broad set's
+    launches of the given text ``validity`` ("inside", "outside" or "all"), ``earth``
+    ("still", "turning" or "both") and day's ``air`` ("standard", "told", "untold" or "all"),
+    the improved MKS's and the dissertation's, over the launches both solve (``judged``,
+    :func:`broad_judgement` by default)."""
+    check_choice(measure, "measure", BROAD_MEASURES)
+    check_choice(statistic, "statistic", ("rms", "median"))
+    check_choice(validity, "validity", ("all", "inside", "outside"))
+    check_choice(earth, "earth", ("both", "still", "turning"))
+    check_choice(air, "air", ("all", *_AIRS))
+    judged = broad_judgement() if judged is None else judged
+    chosen = np.ones(len(judged), dtype=bool)
+    for column, value, every in (("validity", validity, "all"), ("earth", earth, "both")):
+        if value != every:
+            chosen &= judged[column] == value
+    if air != "all":
+        chosen &= judged.air == air
+    solved = _solved(judged)
+    members = judged[chosen & solved]
+    magnitude = {v: np.abs(members[f"{v}_{measure}"].to_numpy()) for v in mks_improved.VARIANTS}
+    reduce = _rms if statistic == "rms" else np.median
+    return BroadImprovement(
+        measure,
+        statistic,
+        float(reduce(magnitude["improved"])),
+        float(reduce(magnitude["dissertation"])),
+        len(members),
+        int((chosen & ~solved).sum()),
+        float(np.mean(magnitude["improved"] < magnitude["dissertation"])),
+    )
+
+
+def broad_band_shares() -> pd.Series:
+    """:func:`map_shares` of the broad set's turning-Earth launches (none an error-map point;
+    on the still Earth the air carries nothing and every launch is inside the band), for the
+    impact miss and the impact range: the validity band checked on launches it was not drawn
+    from."""
+    judged = broad_judgement()
+    turning = judged[judged.earth == "turning"].reset_index(drop=True)
+    return map_shares(turning, ("impact_miss_m", "impact_range_error_m"))
