@@ -199,9 +199,10 @@ def draw_harp_confidence(
     residuals: pd.DataFrame, transfers: pd.DataFrame, text_std_km: dict, text_mean_km: dict
 ):
     """Figure X.5: (a) each site's residual mean (circle) and standard deviation (square) with
-    95 % bootstrap intervals; (b) the mean residual of one site's rounds predicted with the
-    drag area fitted at the other, with the text's densities (triangle) and with each site's
-    density following its Mach-column temperature (diamond). In both panels a marker is open
+    their 95 % intervals (Student's t, Bonett's: harp_confidence.residual_intervals); (b) the
+    mean residual of one site's rounds predicted with the drag area fitted at the other, with
+    the text's densities (triangle) and with each site's density following its Mach-column
+    temperature (diamond), with bootstrap intervals. In both panels a marker is open
     where its interval holds zero; the text's values (``text_std_km``, and ``text_mean_km``
     where the text gives a mean with its sign) are grey crosses. One legend below both."""
     fig, (stats, transfer) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 3.9), layout="constrained")
