@@ -179,3 +179,28 @@ def test_numba_s_debugging_switch_runs_the_same_physics_in_python():
     )
     compiled_3dof = threedof.fly_3dof([baseline_chapter_4(45.0)]).apogee_altitude_m[0]
     assert flown_in_python == pytest.approx(compiled_3dof, rel=1e-9)
+
+
+def test_relative_imports_resolve_from_the_importing_file_s_own_folder(tmp_path):
+    """In a subpackage, ``from ..models import drag`` names a file two folders up from the
+    importer, not one beside the package root: resolved against the root, the digest would drop
+    it, and an edit to it would leave stale machine code in use (shared/design/LAYOUT.md)."""
+    from pathlib import Path
+
+    (tmp_path / "models").mkdir()
+    (tmp_path / "engines").mkdir()
+    for init in ("__init__.py", "models/__init__.py", "engines/__init__.py"):
+        (tmp_path / init).write_text("")
+    (tmp_path / "models" / "drag.py").write_text("CD = 0.3\n")
+    (tmp_path / "models" / "air.py").write_text("RHO = 1.2\n")
+    (tmp_path / "engines" / "fly.py").write_text(
+        "from ..models import drag\nfrom ..models.air import RHO\nfrom . import helper\n"
+    )
+    (tmp_path / "engines" / "helper.py").write_text("")
+    found = compiled._imported(Path(tmp_path / "engines" / "fly.py"))
+    assert found == {
+        tmp_path / "models" / "drag.py",
+        tmp_path / "models" / "air.py",
+        tmp_path / "models" / "__init__.py",
+        tmp_path / "engines" / "helper.py",
+    }

@@ -62,25 +62,38 @@ def _stamp(source: Path) -> tuple[int, int]:
 @cache
 def _imported_as_of(source: Path, mtime_ns: int, size: int) -> frozenset[Path]:
     """:func:`_imported` of ``source`` as it was at that modification time and size (a file
-    is parsed once per version, not once per compiled function)."""
+    is parsed once per version, not once per compiled function). A relative import is resolved
+    against the folder of ``source`` itself (``from ..models import drag`` in a subpackage), an
+    absolute one against the package's root: either way every module a kernel reaches counts."""
     found: set[Path] = set()
     for node in ast.walk(ast.parse(source.read_text())):
         if isinstance(node, ast.ImportFrom):
             module = node.module or ""
-            if not node.level:  # absolute: only the package's own modules count
-                if module != __package__ and not module.startswith(f"{__package__}."):
-                    continue
-                module = module.removeprefix(str(__package__)).lstrip(".")
-            base = _PACKAGE.joinpath(*module.split(".")) if module else _PACKAGE
-            candidates = [base / f"{alias.name}.py" for alias in node.names]
-            if module:
-                candidates.append(base.with_suffix(".py"))
-            found.update(path for path in candidates if path.is_file())
+            if node.level:
+                base = source.parent
+                for _ in range(node.level - 1):
+                    base = base.parent
+            elif module == __package__ or module.startswith(f"{__package__}."):
+                base, module = _PACKAGE, module.removeprefix(str(__package__)).lstrip(".")
+            else:  # another package's
+                continue
+            found.update(_module_files(base, module, [alias.name for alias in node.names]))
         elif isinstance(node, ast.Import):
             for alias in node.names:
                 if alias.name.startswith(f"{__package__}."):
-                    found.add(_PACKAGE.joinpath(*alias.name.split(".")[1:]).with_suffix(".py"))
+                    found.update(_module_files(_PACKAGE, alias.name.partition(".")[2], []))
     return frozenset(found)
+
+
+def _module_files(base: Path, module: str, names: list[str]) -> list[Path]:
+    """The source files of ``module`` (dotted, below ``base``; empty: ``base`` itself) and of
+    those of ``names`` that are its submodules: a module's file or a subpackage's
+    ``__init__.py``."""
+    folder = base.joinpath(*module.split(".")) if module else base
+    candidates = [folder.with_suffix(".py"), folder / "__init__.py"] if module else []
+    for name in names:
+        candidates += [folder / f"{name}.py", folder / name / "__init__.py"]
+    return [path for path in candidates if path.is_file()]
 
 
 def _sources(module_name: str) -> list[Path]:
