@@ -271,8 +271,8 @@ PROBES: dict[str, tuple[str, Err | Warned | Ok]] = {
     "round trajectory site": ("harp_rounds.round_trajectory('mars', 181)", Err("unknown site 'mars'")),
     "radar track round": ("harp_rounds.load_radar_track('barbados', '181')", Err("round_number")),
     "splash range model": ("harp_rounds.splash_range_km(model='flat')", Err("unknown model 'flat'")),
-    "splash error round": ("harp.splash_error(999)", Err("round_number 999 has no observed splash")),
-    "splash error list": ("harp.splash_error([181])", Err("round_number")),
+    "splash error round": ("harp_rounds.splash_error(999)", Err("round_number 999 has no observed splash")),
+    "splash error list": ("harp_rounds.splash_error([181])", Err("round_number")),
     "column agreement site": ("harp.column_agreement('mars')", Err("unknown site 'mars'")),
     # --- HARP with confidence -------------------------------------------------------------
     "bootstrap resamples huge": ("harp_confidence.bootstrap_interval([1.0, 2.0, 4.0], resamples=10**12)", Err("resamples must lie in")),

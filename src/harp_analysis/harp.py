@@ -470,7 +470,6 @@ __all__ += [
     "site_equivalence_p_value",
     "bearing_from_east_deg",
     "mach_column_temperature_difference_k",
-    "splash_error",
 ]
 
 
@@ -539,21 +538,3 @@ def mach_column_temperature_difference_k(site: str = "yuma", reference: str = "b
     return air_temperature_k(speed_of_sound(site)[0]) - air_temperature_k(
         speed_of_sound(reference)[0]
     )
-
-
-def splash_error(
-    round_number: int = 181, relative: bool = False, model: str = "dissertation"
-) -> float:
-    """Observed splash range of a Barbados round (Ch. 6 E: 41.1 km for round 181) minus the ECI
-    MKS's (:func:`harp_rounds.splash_range_km`), km, or as a share of the observed range."""
-    from .harp_rounds import TEXT_SPLASH_RANGES_KM, splash_range_km
-
-    try:
-        observed = TEXT_SPLASH_RANGES_KM[round_number]["observed splash"]
-    except (KeyError, TypeError):  # TypeError: an unhashable round_number
-        raise ValueError(
-            f"round_number {round_number!r} has no observed splash in the text; "
-            f"it gives one for rounds {sorted(TEXT_SPLASH_RANGES_KM)}"
-        ) from None
-    error = observed - splash_range_km("barbados", round_number, model)
-    return error / observed if relative else error

@@ -54,6 +54,7 @@ __all__ = [
     "TEXT_SPLASH_RANGES_KM",
     "round_trajectory",
     "splash_range_km",
+    "splash_error",
     "load_radar_track",
 ]
 
@@ -144,6 +145,22 @@ def splash_range_km(
     39.6 km (MKS) and 41.1 km (observed splash); module docstring."""
     trajectory = round_trajectory(site, round_number, model=model, drag_area_m2=drag_area_m2)
     return float(trajectory.ground_range_m.iloc[-1]) / _KM
+
+
+def splash_error(
+    round_number: int = 181, relative: bool = False, model: str = "dissertation"
+) -> float:
+    """Observed splash range of a Barbados round (Ch. 6 E: 41.1 km for round 181) minus the ECI
+    MKS's (:func:`splash_range_km`), km, or as a share of the observed range."""
+    try:
+        observed = TEXT_SPLASH_RANGES_KM[round_number]["observed splash"]
+    except (KeyError, TypeError):  # TypeError: an unhashable round_number
+        raise ValueError(
+            f"round_number {round_number!r} has no observed splash in the text; "
+            f"it gives one for rounds {sorted(TEXT_SPLASH_RANGES_KM)}"
+        ) from None
+    error = observed - splash_range_km("barbados", round_number, model)
+    return error / observed if relative else error
 
 
 # --- radar tracks --------------------------------------------------------------------------------
