@@ -138,7 +138,7 @@ def error_figure(elevations_deg, *, lower: str | None = None, **variant):
               fontsize=8)  # fmt: skip
     if lower == "detail":
         axes[1, 0].set_ylim(0, 2.5 * max(at_apogee))
-        axes[1, 0].set_ylabel("detail (km)")
+        axes[1, 0].set_ylabel("total position\nerror, near apogee (km)")
     elif lower == "cross range":
         axes[1, 0].set_ylabel("3DOF cross range (m),\nnot in eq 4.7")
     axes[-1, 0].set_xlabel("range (km)")
