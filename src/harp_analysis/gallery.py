@@ -43,9 +43,9 @@ def _rows(results: list[ClaimResult], only_deviating: bool = False) -> str:
 def status_problems() -> list[str]:
     """Where a registry status disagrees with the ledger rows about the figure: "reproduced"
     with a row that does not reproduce (a recovered row included: agreement by construction is
-    not a reproduction), or "deviates" with none; a reproduced figure that no row speaks about without its
-    ``no_number`` (the text states no number about it), or a ``no_number`` on a figure that has
-    rows."""
+    not a reproduction), or "deviates" with none; a reproduced figure that no row speaks about
+    without its ``no_number`` (the text states no number about it), or a ``no_number`` on a
+    figure that has rows."""
     tied = claims_by_figure()
     problems = []
     for entry in load_registry():
