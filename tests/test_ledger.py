@@ -6,7 +6,7 @@ from difflib import SequenceMatcher
 
 import pytest
 
-from harp_analysis import comparisons, harp_rounds, ledger, paths, registry, rotating
+from harp_analysis import comparisons, harp, harp_rounds, ledger, paths, registry, rotating
 
 CLAIMS = ledger.load_claims()
 
@@ -252,6 +252,44 @@ _TYPED = [
                 comparisons.error_ratio("momentum_from_apogee", e)
                 for e in comparisons.BASELINE_ELEVATIONS_DEG
             )[:: len(comparisons.BASELINE_ELEVATIONS_DEG) - 1]
+        ),
+    ),
+]
+
+
+def _equivalence(quantity: str, margin: float, relative: bool = False) -> float:
+    return harp.site_equivalence_p_value(quantity, margin=margin, relative=relative)
+
+
+_TYPED += [
+    (
+        "ch6.yuma.equivalent_muzzle_speeds",
+        "within 2 % p = 0.71",
+        lambda: f"within 2 % p = {_equivalence('muzzle_speed', 0.02, relative=True):.2f}",
+    ),
+    (
+        "ch6.yuma.equivalent_muzzle_speeds",
+        "within 10 % it is, p = 0.0004",
+        lambda: f"within 10 % it is, p = {_equivalence('muzzle_speed', 0.1, relative=True):.4f}",
+    ),
+    (
+        "ch6.yuma.equivalent_muzzle_speeds",
+        "p = 0.11",
+        lambda: f"p = {harp.site_difference_p_value('muzzle_speed'):.2f}",
+    ),
+    (
+        "ch6.sites_apogee_agree",
+        "within 2 km p = 0.17",
+        lambda: f"within 2 km p = {_equivalence('residual', 2000.0):.2f}",
+    ),
+    (
+        "ch6.sites_apogee_agree",
+        "p = 0.092 (0.41 and 0.40",
+        lambda: "p = {:.3f} ({:.2f} and {:.2f}".format(
+            *(
+                harp.site_difference_p_value("residual", model=model)
+                for model in ("dissertation", "consistent", "printed_columns")
+            )
         ),
     ),
 ]
