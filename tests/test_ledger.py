@@ -6,7 +6,18 @@ from difflib import SequenceMatcher
 
 import pytest
 
-from harp_analysis import comparisons, harp, harp_rounds, ledger, paths, registry, rotating
+from harp_analysis import (
+    claims_extra,
+    comparisons,
+    effort,
+    harp,
+    harp_rounds,
+    ledger,
+    mks_improvement,
+    paths,
+    registry,
+    rotating,
+)
 
 CLAIMS = ledger.load_claims()
 
@@ -295,6 +306,49 @@ _TYPED += [
 ]
 
 
+def _off_design_text(error) -> str:
+    share = 100 * error.share_of_apogee
+    return f"errs by {share:.2f} % ({error.error_km:.2f} km at {error.apogee_km:.0f} km)"
+
+
+def _broad(measure: str, statistic: str = "rms", **subset) -> float:
+    return mks_improvement.broad_improvement(measure, statistic, **subset).ratio
+
+
+_TYPED += [
+    (
+        "ch7c.better_decay_improves.turning",
+        "still Earth (0.66)",
+        lambda: f"still Earth ({_broad('impact_range_error_m', earth='still'):.2f})",
+    ),
+    (
+        "ch7c.better_decay_improves.untold_air",
+        "told the day, 0.66",
+        lambda: f"told the day, {_broad('impact_range_error_m', air='told'):.2f}",
+    ),
+    (
+        "ch7c.better_decay_improves.apogee",
+        "median apogee error is 0.40",
+        lambda: f"median apogee error is {_broad('apogee_error_m', 'median'):.2f}",
+    ),
+    (
+        "ch7c.better_decay_improves.apogee",
+        "validity alone it is 1.19",
+        lambda: f"validity alone it is {_broad('apogee_error_m', validity='inside'):.2f}",
+    ),
+    (
+        "ch2.3dof_more_efficient_than_6dof",
+        "about 56 times",
+        lambda: f"about {10 ** effort.orders_of_magnitude(method='6DOF', than='3DOF'):.0f} times",
+    ),
+    (
+        "ch4.assumption_3.flat_fire",
+        "errs by 0.26 % (0.26 km at 102 km)",
+        lambda: _off_design_text(claims_extra.off_design_error()),
+    ),
+]
+
+
 @pytest.mark.parametrize("row, typed, compute", _TYPED, ids=[f"{r}:{t}" for r, t, _ in _TYPED])
 def test_numbers_typed_into_explanations_hold(row, typed, compute):
     """Issue 26: explanations had drifted from the computations they quote (36.6 / 18.8 km for
@@ -410,3 +464,11 @@ def test_every_row_is_tied_to_the_figures_its_paragraph_cites(located):
             if missing:
                 untied.append(f"{claim.id} (L{index + 1}): {sorted(missing)}")
     assert not untied, "rows not tied to a figure their paragraph cites:\n" + "\n".join(untied)
+
+
+def test_the_transfer_row_s_margin_is_its_interval_s_half_width():
+    """ch6.yuma_mean.barbados_drag is known to its bootstrap interval: its margin is that
+    interval's half-width (km), not a number chosen for the verdict."""
+    (claim,) = [c for c in CLAIMS if c.id == "ch6.yuma_mean.barbados_drag"]
+    interval = ledger.evaluate(claim).details.mean_residual_m
+    assert claim.margin == pytest.approx((interval.high - interval.low) / 2e3, abs=0.005)
