@@ -29,6 +29,13 @@ N_SYNTHETIC = 400
 SYNTHETIC = np.random.default_rng(20130501).normal(5.0, 2.0, N_SYNTHETIC)
 
 
+def _chi_square_std_interval(sample) -> tuple[float, float, float]:
+    """The sample standard deviation and normal theory's exact 95 % interval of it."""
+    std, dof = sample.std(ddof=1), sample.size - 1
+    low = std * math.sqrt(dof / stats.chi2.ppf(0.975, dof))
+    return std, low, std * math.sqrt(dof / stats.chi2.ppf(0.025, dof))
+
+
 def test_bootstrap_interval_of_a_mean_is_the_t_interval():
     """Normal data: the t interval is exact. The bootstrap differs from it by the plug-in
     variance (sqrt((n-1)/n), 0.1 %) and z against t (0.4 %), and randomly by the Monte Carlo
@@ -51,9 +58,7 @@ def test_bootstrap_interval_of_a_standard_deviation_is_the_chi_square_interval()
     0.24 / 4 = 6 % (1 sigma); the sample's skewness and the Monte Carlo error (1.4 %) add about
     as much again to the upper endpoint. 25 % of the half-width is 3 sigma of about 8 %."""
     interval = harp_confidence.bootstrap_interval(SYNTHETIC, "std", seed=1)
-    std, dof = SYNTHETIC.std(ddof=1), N_SYNTHETIC - 1
-    low = std * math.sqrt(dof / stats.chi2.ppf(0.975, dof))
-    high = std * math.sqrt(dof / stats.chi2.ppf(0.025, dof))
+    std, low, high = _chi_square_std_interval(SYNTHETIC)
     half = (high - low) / 2
     assert interval.estimate == pytest.approx(std, rel=1e-12)
     assert interval.low == pytest.approx(low, abs=0.25 * half)
@@ -90,9 +95,7 @@ def test_std_interval_is_the_chi_square_interval_for_many_normal_values():
     0.24 at n = 400) moves it by about 0.24 / 4 = 6 % of the half-width (1 sigma), and the
     trimmed mean and c = n / (n - z) by under 1 %: 20 % is 3 sigma."""
     interval = harp_confidence.std_interval(SYNTHETIC)
-    std, dof = SYNTHETIC.std(ddof=1), N_SYNTHETIC - 1
-    low = std * math.sqrt(dof / stats.chi2.ppf(0.975, dof))
-    high = std * math.sqrt(dof / stats.chi2.ppf(0.025, dof))
+    std, low, high = _chi_square_std_interval(SYNTHETIC)
     half = (high - low) / 2
     assert interval.estimate == pytest.approx(std, rel=1e-12)
     assert interval.low == pytest.approx(low, abs=0.2 * half)

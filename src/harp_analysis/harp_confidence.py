@@ -47,7 +47,14 @@ from . import eci, harp
 from .caching import cached_copies
 from .harp_data import FOOT_M
 from .sites import get_site
-from .validation import check_choice, check_range, real_array, real_number, whole_number
+from .validation import (
+    check_choice,
+    check_range,
+    probability,
+    real_array,
+    real_number,
+    whole_number,
+)
 
 __all__ = [
     "RESAMPLES",
@@ -117,19 +124,8 @@ def uniform_quantisation_std(step: float) -> float:
     return check_range(real_number(step, "step"), "step", low=0.0) / math.sqrt(12.0)
 
 
-def _check_confidence(confidence) -> float:
-    return check_range(
-        real_number(confidence, "confidence"),
-        "confidence",
-        low=0.0,
-        high=1.0,
-        low_inclusive=False,
-        high_inclusive=False,
-    )
-
-
 def _check_bootstrap(confidence, resamples, seed):
-    confidence = _check_confidence(confidence)
+    confidence = probability(confidence, "confidence")
     for value, name, low in ((resamples, "resamples", 1), (seed, "seed", 0)):
         if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < low:
             raise ValueError(f"{name} must be a whole number >= {low}; got {value!r}")
@@ -291,7 +287,7 @@ _CLOSED_FORMS[("std", "chi2")] = _chi2_limits
 
 
 def _closed_form(sample, statistic: str, method: str, confidence: float) -> Interval:
-    confidence = _check_confidence(confidence)
+    confidence = probability(confidence, "confidence")
     values = real_array(sample, "sample")
     if values.ndim != 1 or values.size < 5:
         raise ValueError(f"sample must be 1-D with at least 5 values; got shape {values.shape}")
@@ -371,7 +367,7 @@ def coverage(
     check_choice(statistic, "statistic", INTERVAL_METHODS)
     check_choice(method, "method", INTERVAL_METHODS[statistic])
     check_choice(distribution, "distribution", COVERAGE_DISTRIBUTIONS)
-    confidence = _check_confidence(confidence)
+    confidence = probability(confidence, "confidence")
     size = site_rounds() if size is None else whole_number(size, "size", low=5)
     trials = whole_number(trials, "trials", low=1)
     samples, true_mean, true_std = _draws(distribution, np.random.default_rng(seed), (trials, size))

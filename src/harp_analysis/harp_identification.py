@@ -44,7 +44,7 @@ from scipy.stats import norm
 
 from . import eci, harp, harp_rounds
 from .caching import cached_copies
-from .validation import check_choice, check_range, real_number, whole_number
+from .validation import check_choice, check_range, probability, real_number, whole_number
 
 __all__ = [
     "OPEN_CHOICES",
@@ -110,14 +110,7 @@ def noise_threshold_km(
     normal quantile of 1 - ``significance``. The fitted Cd0 A only lowers a true model's
     misfit, so the threshold errs towards calling a combination within noise."""
     count = harp.round_count("yuma") if rounds is None else whole_number(rounds, "rounds", low=1)
-    chance = check_range(
-        real_number(significance, "significance"),
-        "significance",
-        low=0.0,
-        high=1.0,
-        low_inclusive=False,
-        high_inclusive=False,
-    )
+    chance = probability(significance, "significance")
     spread = float(norm.ppf(1.0 - chance)) * math.sqrt(0.8 / count)
     return rounding_rms_km(resolution_m) * math.sqrt(max(1.0 + spread, 0.0))
 

@@ -16,6 +16,7 @@ __all__ = [
     "real_number",
     "real_array",
     "whole_number",
+    "probability",
     "positive_scalar",
     "check_range",
     "check_choice",
@@ -80,6 +81,13 @@ def whole_number(value, name: str, *, low: int, high: float = math.inf) -> int:
     if number != int(number):
         raise ValueError(f"{name} must be a whole number; got {value!r}")
     return int(check_range(number, name, low=low, high=high))
+
+
+def probability(value, name: str) -> float:
+    """``value`` as a number strictly between 0 and 1 (a confidence level, a significance), or
+    an error naming ``name``."""
+    number = real_number(value, name)
+    return check_range(number, name, low=0.0, high=1.0, low_inclusive=False, high_inclusive=False)
 
 
 def positive_scalar(value, name: str, unit: str = "") -> float:
