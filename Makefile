@@ -18,17 +18,18 @@ $(STAMP): environment.txt pyproject.toml
 	touch $@
 
 # The engines' compiled kernels (numba), built once per version of the sources and cached on
-# disk (harp_analysis.compiled), so that no notebook waits for a compiler.
-$(KERNELS): $(STAMP) $(wildcard src/harp_analysis/*.py)
-	$(BIN)/python -c "from harp_analysis import firing_solver, mks, mks_improved, mlt, sixdof, threedof; \
+# disk (harp_analysis.foundation.compiled), so that no notebook waits for a compiler.
+$(KERNELS): $(STAMP) $(shell find src/harp_analysis -name '*.py')
+	$(BIN)/python -c "from harp_analysis.engines import mks, mks_improved, mlt, sixdof, threedof; \
+		from harp_analysis.analyses.fire_control import solver as firing_solver; \
 		threedof.warm_up(); sixdof.warm_up(); mlt.warm_up(); mks.warm_up(); mks_improved.warm_up(); \
 		firing_solver.warm_up()"
 	touch $@
 
 # Figures go to the committed figures/ only here; notebooks run elsewhere write to a scratch
-# folder (harp_analysis.paths.FIGURES_DIR). `make figures FIG=4.11` runs only its notebook.
+# folder (harp_analysis.foundation.paths.FIGURES_DIR). `make figures FIG=4.11` runs only its notebook.
 figures: $(KERNELS)
-	HARP_ANALYSIS_FIGURES_DIR="$(CURDIR)/figures" $(BIN)/python -m harp_analysis.build \
+	HARP_ANALYSIS_FIGURES_DIR="$(CURDIR)/figures" $(BIN)/python -m harp_analysis.reporting.build \
 		$(if $(FIG),--figure $(FIG))
 
 # Style (ruff), types (mypy) and the package's layers (import-linter, contracts in pyproject.toml).

@@ -11,7 +11,7 @@ densities (printed: the largest relative difference between the two).
 import numpy as np
 from measure import agree, interleaved_best, smoke_requested
 
-from harp_analysis import atmosphere as atm
+from harp_analysis.models import atmosphere as atm
 
 SCALAR_CALLS = 200
 # Scalar and vectorised calls run the same formulas; numpy's vectorised exp and power may round

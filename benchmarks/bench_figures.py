@@ -2,15 +2,16 @@
 benchmarks/bench_figures.py``; ``--smoke`` for one quick round that checks what is written).
 
 The figure is one the notebooks would draw: 6.5 in wide, four models' curves with markers,
-mathtext labels and a legend. The reference is how :func:`harp_analysis.plotting.save_figure`
-saved before: ``fig.savefig`` to a 300 dpi PNG, then to a PDF, in the house style (TrueType
-fonts, no stamps), each through a temporary file, matplotlib subsetting the fonts and laying
-mathtext out in each of the save's four drawings. The package subsets the fonts without the
-tables a PDF never reads, keeps each subset for glyph sets that recur, and lays each mathtext
-string out once per save: timed with its font cache emptied before every save (a figure of new
-text) and kept (one whose text was seen before). Printed: the best time per save of each
-(interleaved rounds), the ratio to the reference, and the PDFs' sizes; checked (every run): the
-PNGs are byte-identical and every PDF embeds its fonts as TrueType, none as Type 3.
+mathtext labels and a legend. The reference is how
+:func:`harp_analysis.reporting.plotting.save_figure` saved before: ``fig.savefig`` to a 300 dpi PNG,
+then to a PDF, in the house style (TrueType fonts, no stamps), each through a temporary file,
+matplotlib subsetting the fonts and laying mathtext out in each of the save's four drawings. The
+package subsets the fonts without the tables a PDF never reads, keeps each subset for glyph sets
+that recur, and lays each mathtext string out once per save: timed with its font cache emptied
+before every save (a figure of new text) and kept (one whose text was seen before). Printed: the
+best time per save of each (interleaved rounds), the ratio to the reference, and the PDFs' sizes;
+checked (every run): the PNGs are byte-identical and every PDF embeds its fonts as TrueType, none as
+Type 3.
 """
 
 import os
@@ -24,8 +25,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from measure import interleaved_best
 
-from harp_analysis import plotting
-from harp_analysis.paths import write_atomically
+from harp_analysis.foundation.paths import write_atomically
+from harp_analysis.reporting import plotting
 
 matplotlib.use("agg")
 

@@ -1,8 +1,9 @@
 """Fire control at raid scale (issue 24), timed and counted in one run.
 
 1. The counting case (HP from Barbados to the point 150 km down the gun's bearing at sea level,
-   :func:`harp_analysis.fire_control.barbados_case`): one MKS firing solution (both roots), its
-   3DOF verification and refinement, and the 3DOF shooting alone from the drag-free conic.
+   :func:`harp_analysis.analyses.fire_control.firing.barbados_case`): one MKS firing solution (both
+   roots), its 3DOF verification and refinement, and the 3DOF shooting alone from the drag-free
+   conic.
 2. A raid: :func:`fire_control.raid`'s targets, each at 50 intercept times over its flight
    (100 x 50 = 5,000 intercepts; ``--targets`` and ``--times`` change it, ``--smoke`` runs two
    targets at six times, one timing each, to check every path): every intercept solved by the
@@ -30,9 +31,9 @@ import warnings
 import numpy as np
 from measure import agree, best_of, verdict
 
-from harp_analysis import fire_control as fc
-from harp_analysis import threedof
-from harp_analysis.trajectory import TruncatedFlightWarning
+from harp_analysis.analyses.fire_control import firing as fc
+from harp_analysis.engines import threedof
+from harp_analysis.models.trajectory import TruncatedFlightWarning
 
 LANDED_M = 1.0  # the verified raid's tolerance, and every reference's
 

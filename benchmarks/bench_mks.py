@@ -5,8 +5,9 @@ A million launches of Chapter 4's baseline cone at 2157 m/s, elevations 30-85 de
 its own beta and tau (eqs 3.22, 3.27). The references are straight-line numpy of the same
 three-term MKS (eqs 6.6-6.10, 6.13, 6.14):
 
-- at eq 6.4's angle, :func:`harp_analysis.effort.mks_apogee` (the operations Fig 4.7 counts),
-  which computes beta and tau itself, and the same code handed them (:func:`handed_apogee`);
+- at eq 6.4's angle, :func:`harp_analysis.analyses.effort.mks_apogee` (the operations Fig 4.7
+counts),   which computes beta and tau itself, and the same code handed them
+(:func:`handed_apogee`);
 - at the first zero of du/dtheta, one Newton step from eq 6.4's angle (:func:`first_zero`; the
   zero lies so near eq 6.4's angle on these launches that one step converges to 1e-16 rad);
 - a copy of the elevations: the memory-bound floor per launch.
@@ -32,10 +33,12 @@ from measure import (
     verdict,
 )
 
-from harp_analysis import earth, effort, mks
-from harp_analysis.atmosphere import SEA_LEVEL_DENSITY_KG_M3, TEXT_DECAY_CONSTANT_PER_M
-from harp_analysis.launch import Launches, baseline_chapter_4
-from harp_analysis.projectiles import BASELINE
+from harp_analysis.analyses import effort
+from harp_analysis.engines import mks
+from harp_analysis.foundation import earth
+from harp_analysis.models.atmosphere import SEA_LEVEL_DENSITY_KG_M3, TEXT_DECAY_CONSTANT_PER_M
+from harp_analysis.models.launch import Launches, baseline_chapter_4
+from harp_analysis.models.projectiles import BASELINE
 
 SPEED_M_S = 2157.0
 SINGLE_TARGET_S, MOONSHOT_S = 10e-6, 20e-9

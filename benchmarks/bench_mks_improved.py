@@ -1,10 +1,10 @@
-"""The improved MKS's speed (:func:`harp_analysis.mks_improved.solve`, Chapter 7 C) against its
-scipy reference measured in the same run (``make benchmark``; ``--smoke`` for a quick check
+"""The improved MKS's speed (:func:`harp_analysis.engines.mks_improved.solve`, Chapter 7 C) against
+its scipy reference measured in the same run (``make benchmark``; ``--smoke`` for a quick check
 that every path runs and agrees).
 
 The launches are those the improved MKS is fitted and judged on
-(:data:`harp_analysis.mks_improvement.TRAINING` and ``JUDGING``: the baseline cone, HP and LP,
-still and rotating Earth; the smoke mode takes two). The reference is the same physics as
+(:data:`harp_analysis.analyses.mks_improvement.TRAINING` and ``JUDGING``: the baseline cone, HP and
+LP, still and rotating Earth; the smoke mode takes two). The reference is the same physics as
 before it was compiled, written here: the loss rate in numpy (:func:`reference_rates`, what
 ``_Air.rates`` was), the ascent's loss by numpy's trapezoid on it, and the re-entry marched by
 scipy's ``solve_ivp`` (DOP853, at the package's rtol 1e-10 and atol 1e-13) calling that rate on
@@ -30,8 +30,10 @@ import numpy as np
 from measure import agree, cold_start_s, interleaved_best, smoke_requested, verdict
 from scipy.integrate import solve_ivp
 
-from harp_analysis import earth, mks_improved, mks_improvement
-from harp_analysis.launch import Launch
+from harp_analysis.analyses import mks_improvement
+from harp_analysis.engines import mks_improved
+from harp_analysis.foundation import earth
+from harp_analysis.models.launch import Launch
 
 TARGET_S = 5e-3
 # The reference's march, not restarted on the breakpoints, is off by a little of the re-entry

@@ -27,11 +27,11 @@ path runs and MLT stays near the 6DOF).
 from bench_sixdof import yardstick
 from measure import agree, interleaved_best, smoke_requested
 
-from harp_analysis import mlt, sixdof, threedof
-from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2
+from harp_analysis.engines import mlt, sixdof, threedof
+from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2
 
 SEGMENTS_M = (2000.0, 1000.0, 500.0, 100.0)
-# Fig 4.7's MLT flight (harp_analysis.effort.effort_table)
+# Fig 4.7's MLT flight (harp_analysis.analyses.effort.effort_table)
 EFFORT_FLIGHT = dict(
     density_altitude="spherical", segment_length_m=mlt.SEGMENT_LENGTH_M, coefficients_at="middle"
 )

@@ -33,8 +33,8 @@ import numpy as np
 from measure import agree, interleaved_best, smoke_requested
 from scipy.integrate import solve_ivp
 
-from harp_analysis import sixdof
-from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2
+from harp_analysis.engines import sixdof
+from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2
 
 LAUNCHES = {"HP": HP_CHAPTER_2, "LP": LP_CHAPTER_2}
 # Before the compiled right-hand side (module docstring): seconds per trajectory, per

@@ -2,16 +2,17 @@
 benchmark``).
 
 The work: a Monte Carlo of 3DOF flights of Chapter 4's baseline cone, its elevation drawn
-uniformly in 20-85 deg from a seeded Philox stream (:func:`harp_analysis.sweeps.sample_chunk`),
-flown in chunks by :func:`harp_analysis.threedof.fly_3dof`. The same sweep runs in this process
-and on local clusters of one and of two worker processes (one thread each; the workers load the
-compiled kernels before the timing starts). So does a sweep of idle waits, which needs no CPU:
-its speed-up is the scheduling's alone, whatever else the machine is running. The reference is
-the sweep in this process: the same flights, chunks and seeds, one after the other; every
-cluster's run must return its apogees bit for bit (checked). Printed: the best wall time of
-each (interleaved rounds), the speed-ups of two workers over one, whether every run returned
-the same apogees, and the load average before the run. ``--smoke``: a few small chunks, one
-round, clusters of threads in this process, to check every path.
+uniformly in 20-85 deg from a seeded Philox stream
+(:func:`harp_analysis.foundation.sweeps.sample_chunk`), flown in chunks by
+:func:`harp_analysis.engines.threedof.fly_3dof`. The same sweep runs in this process and on local
+clusters of one and of two worker processes (one thread each; the workers load the compiled kernels
+before the timing starts). So does a sweep of idle waits, which needs no CPU: its speed-up is the
+scheduling's alone, whatever else the machine is running. The reference is the sweep in this
+process: the same flights, chunks and seeds, one after the other; every cluster's run must return
+its apogees bit for bit (checked). Printed: the best wall time of each (interleaved rounds), the
+speed-ups of two workers over one, whether every run returned the same apogees, and the load average
+before the run. ``--smoke``: a few small chunks, one round, clusters of threads in this process, to
+check every path.
 """
 
 import logging
@@ -24,8 +25,9 @@ import numpy as np
 from distributed import Client
 from measure import agree, interleaved_best, smoke_requested
 
-from harp_analysis import sweeps, threedof
-from harp_analysis.launch import baseline_chapter_4
+from harp_analysis.engines import threedof
+from harp_analysis.foundation import sweeps
+from harp_analysis.models.launch import baseline_chapter_4
 
 SEED = 1965
 FLIGHTS, CHUNK, ROUNDS = 20_000, 1_000, 3

@@ -44,8 +44,8 @@ from measure import (
 from numba import njit
 from scipy.integrate import DOP853, solve_ivp
 
-from harp_analysis import threedof
-from harp_analysis.launch import Launch, baseline_chapter_4
+from harp_analysis.engines import threedof
+from harp_analysis.models.launch import Launch, baseline_chapter_4
 
 RADIUS_M, GM_M3_S2 = 6_378_000.0, 3.986004418e14
 AREA_OVER_2M = 0.008 / (2 * 11.6)  # the baseline cone: base area 0.008 m^2, 11.6 kg
@@ -336,7 +336,7 @@ def outcome(row) -> dict:
 
 COLD_START = (  # the compilation of one pair of atmosphere and drag law (make compiles all ten)
     "import time; t = time.perf_counter(); from harp_analysis import threedof; "
-    "from harp_analysis.launch import baseline_chapter_4; "
+    "from harp_analysis.models.launch import baseline_chapter_4; "
     "threedof.fly_3dof(baseline_chapter_4(45.0)); print(time.perf_counter() - t)"
 )
 

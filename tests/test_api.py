@@ -29,9 +29,9 @@ def test_each_public_name_is_its_module_s_object(name):
 def test_an_unknown_name_is_an_attribute_error_naming_it():
     with pytest.raises(AttributeError, match="has no attribute 'simulate_4dof'"):
         harp_analysis.simulate_4dof  # noqa: B018
-    from harp_analysis import mks  # submodules import as ever
+    from harp_analysis.engines import mks  # submodules import as ever
 
-    assert mks.__name__ == "harp_analysis.mks"
+    assert mks.__name__ == "harp_analysis.engines.mks"
 
 
 def test_a_launch_flies_from_the_top_level_names():

@@ -5,10 +5,12 @@ import warnings
 import numpy as np
 import pytest
 
-from harp_analysis import appendix_a, earth, threedof, trajectory
-from harp_analysis.launch import Launch
-from harp_analysis.projectiles import BASELINE
-from harp_analysis.validation import ModelValidityWarning
+from harp_analysis.engines import appendix_a, threedof
+from harp_analysis.foundation import earth
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models import trajectory
+from harp_analysis.models.launch import Launch
+from harp_analysis.models.projectiles import BASELINE
 
 #: The listing's launch: the baseline cone (eq 4.8) at 45 deg in the three-layer air it
 #: hard-codes, 2157 m/s due east from the equator, the Earth's spin off.

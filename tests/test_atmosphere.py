@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from harp_analysis import atmosphere as atm
+from harp_analysis.models import atmosphere as atm
 
 NASA_TABLE = pd.read_csv(
     Path(__file__).parent / "reference" / "us1976_density_table.csv",

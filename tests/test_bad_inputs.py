@@ -35,9 +35,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from harp_analysis.atmosphere import ATMOSPHERE_NAMES, get_atmosphere
-from harp_analysis.launch import BOUNDS, Launch
-from harp_analysis.projectiles import BASELINE
+from harp_analysis.models.atmosphere import ATMOSPHERE_NAMES, get_atmosphere
+from harp_analysis.models.launch import BOUNDS, Launch
+from harp_analysis.models.projectiles import BASELINE
 
 PROBE_SECONDS = 10  # wall time a probe may take (the slowest correct one takes ~2 s)
 _BACKSTOP_SECONDS = 5  # then faulthandler ends the child
@@ -63,21 +63,37 @@ class Ok:
 SETUP = """
 import itertools, math
 import numpy as np
-from harp_analysis import (atmosphere, comparisons, eci, error_budget, fire_control, harp,
-    harp_confidence, harp_data, harp_rounds, mks, mks_improved, mks_improvement, mlt,
-    mlt_validation, projectiles, registry, scenarios, sixdof, sweeps, threedof)
-from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, Launch, Launches, baseline_chapter_4
-from harp_analysis.projectiles import BASELINE, HP, LP
+from harp_analysis.analyses import (
+    comparisons,
+    error_budget,
+    mks_improvement,
+    mlt_validation,
+    scenarios,
+)
+from harp_analysis.analyses.fire_control import firing
+from harp_analysis.analyses.harp import apogees, appendices, confidence as harp_confidence, rounds
+from harp_analysis.engines import eci, mks, mks_improved, mlt, sixdof, threedof
+from harp_analysis.foundation import sweeps
+from harp_analysis.models import atmosphere, projectiles
+from harp_analysis.reporting import registry
+from harp_analysis.models.launch import (
+    HP_CHAPTER_2,
+    LP_CHAPTER_2,
+    Launch,
+    Launches,
+    baseline_chapter_4,
+)
+from harp_analysis.models.projectiles import BASELINE, HP, LP
 nan, inf = math.nan, math.inf
 B45 = baseline_chapter_4(45.0)
 HP50 = HP_CHAPTER_2.but(cross_wind_m_s=0.0)
-GUN, TARGET = fire_control.barbados_case()
+GUN, TARGET = firing.barbados_case()
 # compiled before any probe runs: an alarm must never interrupt a compiler
-from harp_analysis import firing_solver
+from harp_analysis.analyses.fire_control import solver
 for warm in (mks, mks_improved, firing_solver, sixdof, mlt):
     warm.warm_up()
 threedof.fly_3dof(B45), threedof.fly_3dof(HP_CHAPTER_2), threedof.fly_3dof(GUN)
-fire_control.firing_solutions(GUN, TARGET)
+firing.firing_solutions(GUN, TARGET)
 """
 
 # fmt: off
@@ -199,7 +215,7 @@ PROBES: dict[str, tuple[str, Err | Warned | Ok]] = {
     "improved n_terms string": ("mks_improved.solve(B45, n_terms='3')", Err("n_terms")),
     "improved calibration": ("mks_improved.solve(B45, calibration=2.0)", Err("calibration")),
     "improved fire-control gun": (
-        "mks_improved.solve(fire_control.BARBADOS_HP.but(elevation_deg=30.845228653704602, "
+        "mks_improved.solve(firing.BARBADOS_HP.but(elevation_deg=30.845228653704602, "
         "bearing_deg=269.9255856283873))",
         Warned("improved MKS"),
     ),
@@ -208,16 +224,16 @@ PROBES: dict[str, tuple[str, Err | Warned | Ok]] = {
     "eci n_terms string": ("eci.solution_for_launch(B45, n_terms='3')", Err("n_terms")),
     "eci launch string": ("eci.solution_for_launch('B45')", Err("launch")),
     # --- fire control -------------------------------------------------------------------------
-    "target latitude nan": ("fire_control.TargetPoint(nan, 0.0)", Err("latitude_deg must be finite")),
-    "target latitude string": ("fire_control.TargetPoint('13', 0.0)", Err("latitude_deg must be a real number")),
-    "target altitude negative": ("fire_control.TargetPoint(13.0, -59.0, altitude_m=-1.0)", Err("altitude_m must lie in")),
-    "target arrival past": ("fire_control.TargetPoint(13.0, -59.0, arrival_time_s=-1.0)", Err("arrival_time_s")),
-    "firing target string": ("fire_control.firing_solutions(GUN, 'target')", Err("target")),
-    "firing gun string": ("fire_control.firing_solutions('gun', TARGET)", Err("gun")),
-    "firing branch": ("fire_control.firing_solutions(GUN, TARGET, branch='up')", Err("branch")),
-    "firing bearing limits": ("fire_control.firing_solutions(GUN, TARGET, bearing_limits_deg=(nan, 10.0))", Err("bearing_limits_deg")),
-    "firing empty targets": ("fire_control.firing_solutions(GUN, [])", Ok("r == []")),
-    "firing case": ("fire_control.firing_solutions(GUN, TARGET)", Ok("r.low is not None or r.reason")),
+    "target latitude nan": ("firing.TargetPoint(nan, 0.0)", Err("latitude_deg must be finite")),
+    "target latitude string": ("firing.TargetPoint('13', 0.0)", Err("latitude_deg must be a real number")),
+    "target altitude negative": ("firing.TargetPoint(13.0, -59.0, altitude_m=-1.0)", Err("altitude_m must lie in")),
+    "target arrival past": ("firing.TargetPoint(13.0, -59.0, arrival_time_s=-1.0)", Err("arrival_time_s")),
+    "firing target string": ("firing.firing_solutions(GUN, 'target')", Err("target")),
+    "firing gun string": ("firing.firing_solutions('gun', TARGET)", Err("gun")),
+    "firing branch": ("firing.firing_solutions(GUN, TARGET, branch='up')", Err("branch")),
+    "firing bearing limits": ("firing.firing_solutions(GUN, TARGET, bearing_limits_deg=(nan, 10.0))", Err("bearing_limits_deg")),
+    "firing empty targets": ("firing.firing_solutions(GUN, [])", Ok("r == []")),
+    "firing case": ("firing.firing_solutions(GUN, TARGET)", Ok("r.low is not None or r.reason")),
     # --- the error budget ---------------------------------------------------------------------
     "dispersion samples huge": ("error_budget.dispersion(B45, samples=10**12, progress=False)", Err("samples must lie in")),
     "dispersion samples one": ("error_budget.dispersion(B45, samples=1, progress=False)", Err("samples must lie in")),
@@ -248,32 +264,32 @@ PROBES: dict[str, tuple[str, Err | Warned | Ok]] = {
     "sample chunk dimensions huge": ("sweeps.sample_chunk(0, 10**9, range(10))", Err("dimensions|points")),
     "sample chunk method": ("sweeps.sample_chunk(0, 2, range(4), method='halton')", Err("method")),
     # --- the HARP data ------------------------------------------------------------------------
-    "appendix site": ("harp_data.load_appendix('mars')", Err("unknown site 'mars'")),
-    "appendix site None": ("harp_data.load_appendix(None)", Err("site")),
-    "appendix site list": ("harp_data.load_appendix(['yuma'])", Err("site")),
-    "appendix missing file": ("harp_data.load_appendix('yuma', path='/nonexistent/e.tsv')", Err("/nonexistent/e.tsv")),
-    "appendix path number": ("harp_data.load_appendix('yuma', path=5)", Err("path")),
-    "speeds site": ("harp_data.load_muzzle_speeds('mars')", Err("unknown site 'mars'")),
-    "barbados loads": ("harp_data.load_barbados()", Ok("len(r) == 23 and r.duplicate_of_earlier_row.sum() == 1")),
-    "predicted model": ("harp.predicted_apogees('yuma', model='flat')", Err("unknown model 'flat'")),
-    "predicted drag area nan": ("harp.predicted_apogees('yuma', drag_area=nan)", Err("drag_area must be finite")),
-    "predicted drag area negative": ("harp.predicted_apogees('yuma', drag_area=-1.0)", Err("drag_area must lie in")),
-    "predicted drag area string": ("harp.predicted_apogees('yuma', drag_area='0.003')", Err("drag_area must be a real number")),
-    "predicted drag area list": ("harp.predicted_apogees('yuma', drag_area=[0.003])", Err("drag_area must be a real number")),
-    "drag area model list": ("harp.drag_area_m2(['dissertation'])", Err("model")),
-    "drag area model": ("harp.drag_area_m2('flat')", Err("unknown model 'flat'")),
-    "residual statistic": ("harp.residual_statistic('yuma', 'median')", Err("statistic")),
-    "martlet mass": ("harp.martlet(-1.0, 1800.0)", Err("mass_kg")),
-    "round trajectory round": ("harp_rounds.round_trajectory('barbados', 999)", Err("round 999 is not in")),
-    "round trajectory fraction": ("harp_rounds.round_trajectory('barbados', 181.7)", Err("round_number")),
-    "round trajectory string": ("harp_rounds.round_trajectory('barbados', '181')", Err("round_number")),
-    "round trajectory points": ("harp_rounds.round_trajectory('barbados', 181, n_points=10**12)", Err("n_points")),
-    "round trajectory site": ("harp_rounds.round_trajectory('mars', 181)", Err("unknown site 'mars'")),
-    "radar track round": ("harp_rounds.load_radar_track('barbados', '181')", Err("round_number")),
-    "splash range model": ("harp_rounds.splash_range_km(model='flat')", Err("unknown model 'flat'")),
-    "splash error round": ("harp_rounds.splash_error(999)", Err("round_number 999 has no observed splash")),
-    "splash error list": ("harp_rounds.splash_error([181])", Err("round_number")),
-    "column agreement site": ("harp.column_agreement('mars')", Err("unknown site 'mars'")),
+    "appendix site": ("appendices.load_appendix('mars')", Err("unknown site 'mars'")),
+    "appendix site None": ("appendices.load_appendix(None)", Err("site")),
+    "appendix site list": ("appendices.load_appendix(['yuma'])", Err("site")),
+    "appendix missing file": ("appendices.load_appendix('yuma', path='/nonexistent/e.tsv')", Err("/nonexistent/e.tsv")),
+    "appendix path number": ("appendices.load_appendix('yuma', path=5)", Err("path")),
+    "speeds site": ("appendices.load_muzzle_speeds('mars')", Err("unknown site 'mars'")),
+    "barbados loads": ("appendices.load_barbados()", Ok("len(r) == 23 and r.duplicate_of_earlier_row.sum() == 1")),
+    "predicted model": ("apogees.predicted_apogees('yuma', model='flat')", Err("unknown model 'flat'")),
+    "predicted drag area nan": ("apogees.predicted_apogees('yuma', drag_area=nan)", Err("drag_area must be finite")),
+    "predicted drag area negative": ("apogees.predicted_apogees('yuma', drag_area=-1.0)", Err("drag_area must lie in")),
+    "predicted drag area string": ("apogees.predicted_apogees('yuma', drag_area='0.003')", Err("drag_area must be a real number")),
+    "predicted drag area list": ("apogees.predicted_apogees('yuma', drag_area=[0.003])", Err("drag_area must be a real number")),
+    "drag area model list": ("apogees.drag_area_m2(['dissertation'])", Err("model")),
+    "drag area model": ("apogees.drag_area_m2('flat')", Err("unknown model 'flat'")),
+    "residual statistic": ("apogees.residual_statistic('yuma', 'median')", Err("statistic")),
+    "martlet mass": ("apogees.martlet(-1.0, 1800.0)", Err("mass_kg")),
+    "round trajectory round": ("rounds.round_trajectory('barbados', 999)", Err("round 999 is not in")),
+    "round trajectory fraction": ("rounds.round_trajectory('barbados', 181.7)", Err("round_number")),
+    "round trajectory string": ("rounds.round_trajectory('barbados', '181')", Err("round_number")),
+    "round trajectory points": ("rounds.round_trajectory('barbados', 181, n_points=10**12)", Err("n_points")),
+    "round trajectory site": ("rounds.round_trajectory('mars', 181)", Err("unknown site 'mars'")),
+    "radar track round": ("rounds.load_radar_track('barbados', '181')", Err("round_number")),
+    "splash range model": ("rounds.splash_range_km(model='flat')", Err("unknown model 'flat'")),
+    "splash error round": ("rounds.splash_error(999)", Err("round_number 999 has no observed splash")),
+    "splash error list": ("rounds.splash_error([181])", Err("round_number")),
+    "column agreement site": ("apogees.column_agreement('mars')", Err("unknown site 'mars'")),
     # --- HARP with confidence -------------------------------------------------------------
     "bootstrap resamples huge": ("harp_confidence.bootstrap_interval([1.0, 2.0, 4.0], resamples=10**12)", Err("resamples must lie in")),
     "bootstrap resamples few": ("harp_confidence.bootstrap_interval([1.0, 2.0, 4.0], resamples=3)", Err("resamples must lie in")),

@@ -1,7 +1,7 @@
 """Shared results cannot be corrupted by a caller: every cache of the package is either
-:func:`harp_analysis.caching.cached_copies` (each caller its own deep copy) or a plain cache of
-a result nobody can edit, listed here with the reason. A new bare cache fails the scan until it
-is one or the other."""
+:func:`harp_analysis.foundation.caching.cached_copies` (each caller its own deep copy) or a plain
+cache of a result nobody can edit, listed here with the reason. A new bare cache fails the scan
+until it is one or the other."""
 
 import ast
 import copy
@@ -13,19 +13,11 @@ import pandas as pd
 import pytest
 
 import harp_analysis
-from harp_analysis import (
-    caching,
-    effort,
-    error_budget,
-    harp,
-    harp_confidence,
-    harp_identification,
-    ledger,
-    mks_improvement,
-    registry,
-    scenarios,
-)
-from harp_analysis.launch import HP_CHAPTER_2
+from harp_analysis.analyses import effort, error_budget, mks_improvement, scenarios
+from harp_analysis.analyses.harp import apogees, confidence, identification
+from harp_analysis.foundation import caching
+from harp_analysis.models.launch import HP_CHAPTER_2
+from harp_analysis.reporting import ledger, registry
 
 PACKAGE = Path(harp_analysis.__file__).parent
 
@@ -35,8 +27,8 @@ IMMUTABLE_RESULTS = {
     "compiled._digest": "a string",
     "explorer._typical_martlet_mass_kg": "a float",
     "fire_control.raid_against_3dof_intercept": "a frozen RaidComparison of ints and floats",
-    "harp.fit_drag_area_to_errors": "a tuple of three floats",
-    "harp._drag_area_m2": "a float",
+    "apogees.fit_drag_area_to_errors": "a tuple of three floats",
+    "apogees._drag_area_m2": "a float",
     "mks_improvement.calibration": "a frozen Calibration of one float",
     "registry.load_registry": "a tuple of frozen RegistryEntry of strings and a bool",
     "taylor_maccoll.baseline_fit": "a frozen DragFit of four floats",
@@ -86,7 +78,8 @@ def test_every_bare_cache_returns_an_immutable_result_or_is_listed():
     unlisted = bare - set(IMMUTABLE_RESULTS) - set(NOT_YET_COPIES)
     assert not unlisted, (
         f"{sorted(unlisted)} cache a result without copying it: decorate with "
-        "harp_analysis.caching.cached_copies, or, if the result cannot be edited (numbers, "
+        "harp_analysis.foundation.caching.cached_copies, or, if the result cannot be edited "
+        "(numbers, "
         "strings, tuples of them, frozen dataclasses of them), list it in IMMUTABLE_RESULTS"
     )
 
@@ -100,8 +93,8 @@ def test_the_lists_name_only_bare_caches_that_exist():
 @pytest.mark.parametrize(
     "function, args",
     [
-        (harp.fit_drag_area_to_errors, ()),
-        (harp.drag_area_m2, ("consistent",)),
+        (apogees.fit_drag_area_to_errors, ()),
+        (apogees.drag_area_m2, ("consistent",)),
         (mks_improvement.calibration, ()),
         (registry.load_registry, ()),
     ],
@@ -156,10 +149,10 @@ def _same(a, b) -> bool:
     "function, args",
     [
         (error_budget.nominal, (error_budget.representative_launches()["baseline, 45 deg"],)),
-        (harp.appendix_rounds, ("barbados",)),
-        (harp.predicted_apogees, ("yuma",)),
-        (harp_confidence._rounds, ("yuma",)),
-        (harp_identification.identification_table, ()),
+        (apogees.appendix_rounds, ("barbados",)),
+        (apogees.predicted_apogees, ("yuma",)),
+        (confidence._rounds, ("yuma",)),
+        (identification.identification_table, ()),
         (ledger.load_claims, ()),
         (effort._mlt_costs, ()),
         (mks_improvement._flight, (HP_CHAPTER_2.but(cross_wind_m_s=0.0),)),

@@ -1,6 +1,6 @@
-"""The Chapter 4-6 quantities added for the sweep's rows (harp_analysis.comparisons, .rotating
-and .harp), checked against independent physics: conservation laws, closed forms, the launch
-geometry of harp_analysis.eci and textbook statistics."""
+"""The Chapter 4-6 quantities added for the sweep's rows (harp_analysis.analyses.comparisons,
+.rotating and .harp), checked against independent physics: conservation laws, closed forms, the
+launch geometry of harp_analysis.engines.eci and textbook statistics."""
 
 import math
 
@@ -9,10 +9,14 @@ import pytest
 from scipy import stats
 from scipy.integrate import quad
 
-from harp_analysis import comparisons, earth, eci, harp, harp_data, harp_rounds, rotating
-from harp_analysis.atmosphere import DRY_AIR_GAS_CONSTANT_J_KG_K
-from harp_analysis.launch import baseline_chapter_4
-from harp_analysis.projectiles import BASELINE
+from harp_analysis.analyses import comparisons, rotating
+from harp_analysis.analyses.harp import apogees, appendices
+from harp_analysis.analyses.harp import rounds as harp_rounds
+from harp_analysis.engines import eci
+from harp_analysis.foundation import earth
+from harp_analysis.models.atmosphere import DRY_AIR_GAS_CONSTANT_J_KG_K
+from harp_analysis.models.launch import baseline_chapter_4
+from harp_analysis.models.projectiles import BASELINE
 
 R, GM = earth.RADIUS_M, earth.GM_M3_S2
 
@@ -214,10 +218,10 @@ def test_speed_ratio_changes_as_a_constant_omega_r_against_a_falling_speed():
 
 # --- harp -------------------------------------------------------------------------------------
 def test_round_counts_match_the_transcription():
-    table = harp_data.load_barbados()
-    assert harp.round_count("barbados", distinct=False) == len(table)
-    assert harp.round_count("barbados") == table.round_number.nunique()
-    assert harp.round_count("yuma") == 22
+    table = appendices.load_barbados()
+    assert apogees.round_count("barbados", distinct=False) == len(table)
+    assert apogees.round_count("barbados") == table.round_number.nunique()
+    assert apogees.round_count("yuma") == 22
 
 
 @pytest.mark.parametrize("quantity", ["residual", "muzzle_speed"])
@@ -226,16 +230,16 @@ def test_site_difference_p_value_is_welchs(quantity):
     samples = []
     for site in ("barbados", "yuma"):
         if quantity == "residual":
-            frame = harp.predicted_apogees(site)
+            frame = apogees.predicted_apogees(site)
             samples.append(frame.residual_m[~frame.duplicate_of_earlier_row].to_numpy())
         else:
-            rounds = harp.appendix_rounds(site)
+            rounds = apogees.appendix_rounds(site)
             samples.append(rounds.muzzle_speed_m_s[~rounds.duplicate_of_earlier_row].to_numpy())
     (a, b) = samples
     va, vb = a.var(ddof=1) / a.size, b.var(ddof=1) / b.size
     t = (a.mean() - b.mean()) / math.sqrt(va + vb)
     dof = (va + vb) ** 2 / (va**2 / (a.size - 1) + vb**2 / (b.size - 1))
-    assert harp.site_difference_p_value(quantity) == pytest.approx(
+    assert apogees.site_difference_p_value(quantity) == pytest.approx(
         2 * stats.t.sf(abs(t), dof), rel=1e-9
     )
 
@@ -246,7 +250,7 @@ def test_site_equivalence_is_the_two_one_sided_welch_tests(margin_m):
     the larger p. A wide margin shows equivalence, a narrow one cannot."""
     samples = []
     for site in ("barbados", "yuma"):
-        frame = harp.predicted_apogees(site)
+        frame = apogees.predicted_apogees(site)
         samples.append(frame.residual_m[~frame.duplicate_of_earlier_row].to_numpy())
     (a, b) = samples
     va, vb = a.var(ddof=1) / a.size, b.var(ddof=1) / b.size
@@ -254,16 +258,16 @@ def test_site_equivalence_is_the_two_one_sided_welch_tests(margin_m):
     difference, se = a.mean() - b.mean(), math.sqrt(va + vb)
     p_above = stats.t.sf((difference + margin_m) / se, dof)
     p_below = stats.t.cdf((difference - margin_m) / se, dof)
-    p = harp.site_equivalence_p_value("residual", margin=margin_m)
+    p = apogees.site_equivalence_p_value("residual", margin=margin_m)
     assert p == pytest.approx(max(p_above, p_below), rel=1e-9)
     assert (p < 0.05) is (margin_m == 5000.0)
 
 
 def test_bearings_temperatures_and_splash():
-    assert harp.bearing_from_east_deg("barbados") == pytest.approx(19.0)
-    assert harp.bearing_from_east_deg() == pytest.approx(19.0)
-    a_yuma, a_barbados = harp.speed_of_sound("yuma")[0], harp.speed_of_sound("barbados")[0]
-    assert harp.mach_column_temperature_difference_k() == pytest.approx(
+    assert apogees.bearing_from_east_deg("barbados") == pytest.approx(19.0)
+    assert apogees.bearing_from_east_deg() == pytest.approx(19.0)
+    a_yuma, a_barbados = apogees.speed_of_sound("yuma")[0], apogees.speed_of_sound("barbados")[0]
+    assert apogees.mach_column_temperature_difference_k() == pytest.approx(
         (a_yuma**2 - a_barbados**2) / (1.4 * DRY_AIR_GAS_CONSTANT_J_KG_K)
     )
     assert harp_rounds.splash_error() == pytest.approx(41.1 - harp_rounds.splash_range_km())

@@ -6,8 +6,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from harp_analysis import atmosphere, compiled, drag, effort, threedof
-from harp_analysis.launch import HP_CHAPTER_2, baseline_chapter_4
+from harp_analysis.analyses import effort
+from harp_analysis.engines import threedof
+from harp_analysis.foundation import compiled
+from harp_analysis.models import atmosphere, drag
+from harp_analysis.models.launch import HP_CHAPTER_2, baseline_chapter_4
 
 ALTITUDES_M = st.floats(min_value=0.0, max_value=99_000.0)
 
@@ -43,7 +46,7 @@ def test_select_is_where_on_arrays_and_a_choice_on_numbers():
 
 def test_the_cache_folder_follows_every_formula_a_kernel_reaches():
     """numba alone would keep a kernel compiled against an old formula of another module."""
-    sources = {path.name for path in compiled._sources("harp_analysis.threedof")}
+    sources = {path.name for path in compiled._sources("harp_analysis.engines.threedof")}
     assert {"threedof.py", "integrator.py", "atmosphere.py", "drag.py", "compiled.py"} <= sources
     assert "effort.py" not in sources  # an analysis the engine does not reach
 
@@ -76,7 +79,7 @@ def test_a_module_imported_for_a_constant_counts_in_the_digest():
     """trajectory.py takes only a number from earth.py, which numba bakes into machine code."""
     from pathlib import Path
 
-    from harp_analysis import trajectory
+    from harp_analysis.models import trajectory
 
     assert "earth.py" in {path.name for path in compiled._imported(Path(trajectory.__file__))}
 
@@ -96,7 +99,7 @@ def test_a_flight_that_cannot_be_integrated_raises_instead_of_looping():
 
 
 KERNEL_MODULE = """
-from harp_analysis.compiled import jit
+from harp_analysis.foundation.compiled import jit
 
 
 @jit
@@ -156,11 +159,11 @@ def test_numba_s_debugging_switch_runs_the_same_physics_in_python():
     import subprocess
     import sys
 
-    from harp_analysis import mks
+    from harp_analysis.engines import mks
 
     script = (
         "import json; from harp_analysis import firing_solver, mks, mks_improved, mlt, sixdof, "
-        "threedof; from harp_analysis.launch import baseline_chapter_4 as b; "
+        "threedof; from harp_analysis.models.launch import baseline_chapter_4 as b; "
         "print(json.dumps([mks.simulate_mks(b(45.0)).attrs['apogee_altitude_m'], "
         "float(threedof.fly_3dof([b(45.0)]).apogee_altitude_m[0])]))"
     )

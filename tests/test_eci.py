@@ -7,12 +7,13 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from harp_analysis import earth, eci, mks
-from harp_analysis.atmosphere import get_atmosphere
-from harp_analysis.launch import HP_CHAPTER_2, baseline_chapter_4
-from harp_analysis.projectiles import BASELINE
-from harp_analysis.sites import BARBADOS
-from harp_analysis.validation import ModelValidityWarning
+from harp_analysis.engines import eci, mks
+from harp_analysis.foundation import earth
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models.atmosphere import get_atmosphere
+from harp_analysis.models.launch import HP_CHAPTER_2, baseline_chapter_4
+from harp_analysis.models.projectiles import BASELINE
+from harp_analysis.models.sites import BARBADOS
 
 DEG = math.pi / 180
 NO_TANGENT = replace(eci.CONSISTENT, name="no V_tangent", include_tangent=False)

@@ -9,9 +9,11 @@ import numpy as np
 import pytest
 from scipy.integrate import DOP853
 
-from harp_analysis import atmosphere, effort, mks, mlt, sixdof
-from harp_analysis.launch import HP_CHAPTER_2, Launch
-from harp_analysis.projectiles import BASELINE, HP
+from harp_analysis.analyses import effort
+from harp_analysis.engines import mks, mlt, sixdof
+from harp_analysis.models import atmosphere
+from harp_analysis.models.launch import HP_CHAPTER_2, Launch
+from harp_analysis.models.projectiles import BASELINE, HP
 
 
 def _sample(x, y):

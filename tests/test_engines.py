@@ -1,9 +1,9 @@
 """One physics suite run over every engine (as py-ballisticcalc runs its suite once per engine).
 
-Each engine flies the same :class:`~harp_analysis.launch.Launch` and returns the same table and
-metadata. Checked against physics, not against any engine's earlier output:
+Each engine flies the same :class:`~harp_analysis.models.launch.Launch` and returns the same table
+and metadata. Checked against physics, not against any engine's earlier output:
 
-- in vacuum every engine flies the closed-form Kepler conic (:mod:`harp_analysis.kepler`);
+- in vacuum every engine flies the closed-form Kepler conic (:mod:`harp_analysis.engines.kepler`);
 - in vacuum the specific energy v^2/2 - GM/r is conserved along the flight;
 - a cross wind from the left mirrors one from the right (the engines that model wind);
 - a day with denser air flies as a lighter projectile does (drag is rho A / m; the engines that
@@ -20,11 +20,12 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from harp_analysis import appendix_a, earth, eci, kepler, mks, mks_improved, mlt, sixdof, threedof
-from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, chapter_2
-from harp_analysis.projectiles import HP
-from harp_analysis.trajectory import BASE_COLUMNS, METADATA_KEYS
-from harp_analysis.validation import ModelValidityWarning
+from harp_analysis.engines import appendix_a, eci, kepler, mks, mks_improved, mlt, sixdof, threedof
+from harp_analysis.foundation import earth
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2, chapter_2
+from harp_analysis.models.projectiles import HP
+from harp_analysis.models.trajectory import BASE_COLUMNS, METADATA_KEYS
 
 
 def _eci_table(launch, n_terms=3):

@@ -8,11 +8,13 @@ import distributed
 import numpy as np
 import pytest
 
-from harp_analysis import earth, envelope, fire_control, threedof
-from harp_analysis.fire_control import firing_solutions, great_circle
-from harp_analysis.sites import BARBADOS, YUMA
+from harp_analysis.analyses.fire_control import envelope, firing
+from harp_analysis.analyses.fire_control.firing import firing_solutions, great_circle
+from harp_analysis.engines import threedof
+from harp_analysis.foundation import earth
+from harp_analysis.models.sites import BARBADOS, YUMA
 
-GUN = fire_control.BARBADOS_HP
+GUN = firing.BARBADOS_HP
 
 
 SITES = [
@@ -31,7 +33,7 @@ def test_destination_inverts_the_great_circle(
     latitude_deg, longitude_deg, bearing_deg, downrange_m
 ):
     gun = GUN.but(latitude_deg=latitude_deg, longitude_deg=longitude_deg)
-    target = fire_control.destination(gun, bearing_deg, downrange_m, 12e3)
+    target = firing.destination(gun, bearing_deg, downrange_m, 12e3)
     angle, bearing = great_circle(gun, target)
     assert angle * earth.RADIUS_M == pytest.approx(downrange_m, rel=1e-9)
     turn = (math.degrees(bearing) - bearing_deg + 180.0) % 360.0 - 180.0
@@ -40,13 +42,13 @@ def test_destination_inverts_the_great_circle(
 
 
 def test_destination_at_no_distance_is_the_gun_and_refuses_the_far_side():
-    target = fire_control.destination(GUN, 123.0, 0.0)
+    target = firing.destination(GUN, 123.0, 0.0)
     assert target.latitude_deg == pytest.approx(GUN.latitude_deg, abs=1e-12)
     assert target.longitude_deg == pytest.approx(GUN.longitude_deg, abs=1e-12)
     with pytest.raises(ValueError, match="antipode"):
-        fire_control.destination(GUN, 90.0, 2.1e7)
+        firing.destination(GUN, 90.0, 2.1e7)
     with pytest.raises(ValueError, match="downrange_m"):
-        fire_control.destination(GUN, 90.0, -1.0)
+        firing.destination(GUN, 90.0, -1.0)
 
 
 def _direct_miss(gun, target, solution):
@@ -79,7 +81,7 @@ def test_map_miss_is_the_3dof_fired_at_the_mks_solution(east_map):
     solved = east_map[np.isfinite(east_map.miss_3dof_m)]
     assert len(solved) >= 4
     for row in solved.itertuples():
-        target = fire_control.destination(GUN, 90.0, row.downrange_m, row.altitude_m)
+        target = firing.destination(GUN, 90.0, row.downrange_m, row.altitude_m)
         solutions = firing_solutions(GUN, target)
         solution = solutions.low if row.root == "low" else solutions.high
         assert row.elevation_deg == pytest.approx(solution.elevation_deg, abs=1e-9)
@@ -91,11 +93,11 @@ def test_map_miss_is_the_3dof_fired_at_the_mks_solution(east_map):
 
 
 def test_map_miss_agrees_with_the_verification(east_map):
-    """fire_control.verify_with_3dof measures the same flight's miss at the MKS solution (its
+    """firing.verify_with_3dof measures the same flight's miss at the MKS solution (its
     east and north components); the straight-line distance differs by the vertical part only."""
     row = east_map[(east_map.root == "low") & np.isfinite(east_map.miss_3dof_m)].iloc[0]
-    target = fire_control.destination(GUN, 90.0, row.downrange_m, row.altitude_m)
-    verification = fire_control.verify_with_3dof(GUN, target, firing_solutions(GUN, target).low)
+    target = firing.destination(GUN, 90.0, row.downrange_m, row.altitude_m)
+    verification = firing.verify_with_3dof(GUN, target, firing_solutions(GUN, target).low)
     assert row.miss_3dof_m == pytest.approx(verification.mks_miss_m, abs=1.0)
 
 

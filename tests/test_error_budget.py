@@ -15,8 +15,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from harp_analysis import earth, error_budget
-from harp_analysis.error_budget import CHAPTER_7B, Moments, Uncertainty
+from harp_analysis.analyses import error_budget
+from harp_analysis.analyses.error_budget import CHAPTER_7B, Moments, Uncertainty
+from harp_analysis.foundation import earth
 
 LAUNCHES = error_budget.representative_launches()
 BASELINE_45 = LAUNCHES["baseline, 45 deg"]

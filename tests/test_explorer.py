@@ -17,9 +17,13 @@ from hypothesis import strategies as st
 from tornado.web import HTTPError
 from traitlets.config import Config
 
-from harp_analysis import earth, explorer, harp, mks, mks_improved, mks_improvement, threedof
-from harp_analysis.launch import HP_CHAPTER_2, Launch
-from harp_analysis.projectiles import HP
+from harp_analysis.analyses import mks_improvement
+from harp_analysis.analyses.harp import apogees
+from harp_analysis.engines import mks, mks_improved, threedof
+from harp_analysis.foundation import earth
+from harp_analysis.models.launch import HP_CHAPTER_2, Launch
+from harp_analysis.models.projectiles import HP
+from harp_analysis.reporting import explorer
 
 
 def _numbers(summary: str) -> dict[str, list[float]]:
@@ -78,7 +82,7 @@ def test_a_harp_round_flies_the_martlet_and_shows_the_measured_apogee():
     view = explorer.Explorer(name)
     setting = presets[name]
     launch = explorer.launch_for(setting)
-    assert launch.projectile.reference_area_m2 == pytest.approx(harp.drag_area_m2())
+    assert launch.projectile.reference_area_m2 == pytest.approx(apogees.drag_area_m2())
     assert launch.elevation_deg == 85.0 and launch.rotation_rate_rad_s > 0
     # Yuma's 1.14 kg/m^3 as the day's change of the MKS's sea-level 1.225 kg/m^3
     assert mks.gun_density_kg_m3(launch) == pytest.approx(1.14, rel=1e-12)
@@ -94,7 +98,7 @@ def test_a_custom_projectile_with_the_martlets_drag_flies_as_the_martlet():
     martlet = explorer.launch_for(explorer.Settings(projectile="Martlet", mass_kg=83.0))
     custom = explorer.launch_for(
         explorer.Settings(
-            projectile="custom", mass_kg=83.0, diameter_m=0.37, drag_area_m2=harp.drag_area_m2()
+            projectile="custom", mass_kg=83.0, diameter_m=0.37, drag_area_m2=apogees.drag_area_m2()
         )
     )
     a, b = threedof.fly_3dof(martlet), threedof.fly_3dof(custom)

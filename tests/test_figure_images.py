@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from harp_analysis import paths, registry
+from harp_analysis.foundation import paths
+from harp_analysis.reporting import registry
 
 TOLERANCE_RMS = 0.5
 REGENERATED = os.environ.get("HARP_ANALYSIS_REGENERATED_FIGURES")

@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from harp_analysis import paths, plotting, registry
+from harp_analysis.foundation import paths
+from harp_analysis.reporting import plotting, registry
 
 DRAWN = [e for e in registry.load_registry() if e.file.endswith(".png")]
 

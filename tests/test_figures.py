@@ -17,7 +17,8 @@ from matplotlib import font_manager
 from matplotlib.backends import _backend_pdf_ps
 from matplotlib.mathtext import MathTextParser
 
-from harp_analysis import paths, plotting
+from harp_analysis.foundation import paths
+from harp_analysis.reporting import plotting
 
 
 @pytest.fixture

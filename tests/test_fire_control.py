@@ -9,17 +9,18 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import optimize
 
-from harp_analysis import earth, eci, kepler, threedof
-from harp_analysis.fire_control import (
+from harp_analysis.analyses.fire_control.firing import (
     FiringSolution,
     TargetPoint,
     firing_solutions,
     raid_windows,
     verify_with_3dof,
 )
-from harp_analysis.launch import Launch
-from harp_analysis.projectiles import HP
-from harp_analysis.sites import BARBADOS
+from harp_analysis.engines import eci, kepler, threedof
+from harp_analysis.foundation import earth
+from harp_analysis.models.launch import Launch
+from harp_analysis.models.projectiles import HP
+from harp_analysis.models.sites import BARBADOS
 
 SPEED = HP.launch_speed_m_s
 VACUUM = Launch(HP, SPEED, 45.0, atmosphere="vacuum")
@@ -286,7 +287,7 @@ def test_target_fields_are_refused_by_name(data, name):
 # --- part 2: Kepler targets and intercepts ------------------------------------------------------
 from scipy.integrate import solve_ivp  # noqa: E402
 
-from harp_analysis.fire_control import (  # noqa: E402
+from harp_analysis.analyses.fire_control.firing import (  # noqa: E402
     BARBADOS_HP,
     KeplerTarget,
     barbados_case,
@@ -295,7 +296,7 @@ from harp_analysis.fire_control import (  # noqa: E402
     raid,
     shoot_3dof,
 )
-from harp_analysis.trajectory import rotate_about_axis  # noqa: E402
+from harp_analysis.models.trajectory import rotate_about_axis  # noqa: E402
 
 
 def _two_body(t, y):

@@ -18,11 +18,14 @@ import warnings
 import numpy as np
 import pytest
 
-from harp_analysis import earth, eci, fire_control, firing_solver
-from harp_analysis.launch import Launch, Launches
-from harp_analysis.projectiles import HP
-from harp_analysis.sites import BARBADOS, YUMA
-from harp_analysis.trajectory import launch_frame, rotate_about_axis
+from harp_analysis.analyses.fire_control import firing as fire_control
+from harp_analysis.analyses.fire_control import solver as firing_solver
+from harp_analysis.engines import eci
+from harp_analysis.foundation import earth
+from harp_analysis.models.launch import Launch, Launches
+from harp_analysis.models.projectiles import HP
+from harp_analysis.models.sites import BARBADOS, YUMA
+from harp_analysis.models.trajectory import launch_frame, rotate_about_axis
 
 STEP_DEG = 0.05
 ELEVATIONS_RAD = np.radians(

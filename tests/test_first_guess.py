@@ -11,13 +11,16 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from harp_analysis import earth, fire_control, first_guess, first_guess_figures, mks_improved
-from harp_analysis.fire_control import TargetPoint, destination, firing_solutions
-from harp_analysis.launch import Launch
-from harp_analysis.projectiles import HP
-from harp_analysis.validation import ModelValidityWarning
+from harp_analysis.analyses.fire_control import firing, first_guess
+from harp_analysis.analyses.fire_control.firing import TargetPoint, destination, firing_solutions
+from harp_analysis.engines import mks_improved
+from harp_analysis.foundation import earth
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models.launch import Launch
+from harp_analysis.models.projectiles import HP
+from harp_analysis.reporting.figures import first_guess as first_guess_figures
 
-GUN = fire_control.BARBADOS_HP
+GUN = firing.BARBADOS_HP
 
 
 def _vacuum(rotation_rate_rad_s):
@@ -91,7 +94,7 @@ def test_the_improved_mks_moves_a_long_low_shot_toward_the_3dof():
     target = destination(GUN, 90.0, 180e3)
     root = firing_solutions(GUN, target).low
     better = _improved(GUN, target, root)
-    check_mks, check_improved = fire_control.verify_with_3dof(
+    check_mks, check_improved = firing.verify_with_3dof(
         GUN, [target, target], [root, better], tolerance_m=1.0
     )
     assert root.elevation_deg < check_mks.elevation_deg  # the MKS's shot falls short

@@ -6,8 +6,9 @@ import math
 import numpy as np
 import pytest
 
-from harp_analysis import eci, harp
-from harp_analysis.harp_data import HarpDataError, load_appendix, load_muzzle_speeds
+from harp_analysis.analyses.harp import apogees
+from harp_analysis.analyses.harp.appendices import HarpDataError, load_appendix, load_muzzle_speeds
+from harp_analysis.engines import eci
 
 SITES = ("barbados", "yuma")
 #: Columns the dissertation model reproduces within print rounding for every round; the others
@@ -20,7 +21,7 @@ REPRODUCED = {
 
 @pytest.mark.parametrize("site", SITES)
 def test_stored_speeds_are_the_recovered_ones(site):
-    recovered = harp.recover_muzzle_speeds(site)
+    recovered = apogees.recover_muzzle_speeds(site)
     stored = load_muzzle_speeds(site)
     assert list(stored.round_number) == list(recovered.round_number)
     assert np.array_equal(stored.speed_ft_s, recovered.speed_ft_s)
@@ -28,13 +29,13 @@ def test_stored_speeds_are_the_recovered_ones(site):
 
 @pytest.mark.parametrize("site", SITES)
 def test_recovered_speeds_round_to_print_and_are_unique(site):
-    recovered = harp.recover_muzzle_speeds(site)
+    recovered = apogees.recover_muzzle_speeds(site)
     printed = load_appendix(site).drop_duplicates("round_number").reset_index(drop=True)
     assert np.all(
         np.round(recovered.muzzle_speed_m_s / 10) == np.round(printed.muzzle_speed_m_s / 10)
     )
     assert np.all(np.abs(recovered.muzzle_speed_m_s - printed.muzzle_speed_m_s) <= 5.0)
-    assert np.all(recovered.speed_ft_s % harp.SPEED_STEP_FT_S == 0)
+    assert np.all(recovered.speed_ft_s % apogees.SPEED_STEP_FT_S == 0)
     # the kept speed reproduces mu (within 5 % of a half-unit beyond print rounding at worst),
     # and no other candidate comes within two half-units
     assert recovered.mu_misfit.max() <= 1.05
@@ -43,7 +44,7 @@ def test_recovered_speeds_round_to_print_and_are_unique(site):
 
 @pytest.mark.parametrize("site", SITES)
 def test_dissertation_model_columns(site):
-    agreement = harp.column_agreement(site, "dissertation")
+    agreement = apogees.column_agreement(site, "dissertation")
     within = set(agreement.index[agreement.worst_half_units <= 1.0])
     assert within == REPRODUCED[site]
 
@@ -52,7 +53,7 @@ def test_printed_columns_that_are_findings_stay_far_off():
     """Azimuth and Li are not reproduced by any model here: the gun bearing that fits them is
     about 0.9 deg (Barbados) and 0.23 deg (Yuma) off the printed one."""
     for site in ("barbados", "yuma"):  # far beyond print rounding: five half-units or more
-        agreement = harp.column_agreement(site)
+        agreement = apogees.column_agreement(site)
         assert agreement.loc["corrected_azimuth_rad", "worst_half_units"] > 5
         assert agreement.loc["initial_angular_momentum_m2_s", "worst_half_units"] > 5
 
@@ -60,51 +61,51 @@ def test_printed_columns_that_are_findings_stay_far_off():
 @pytest.mark.parametrize("model", ["consistent", "printed_columns"])
 def test_beta_a_model_predicts_with_is_the_beta_it_fitted(model):
     """Cd0 A from Appendix D's Beta column: the betas the model flies round to the printed."""
-    launch = harp.launch_corrections("barbados", model)
-    printed = harp.appendix_rounds("barbados").beta.to_numpy()
+    launch = apogees.launch_corrections("barbados", model)
+    printed = apogees.appendix_rounds("barbados").beta.to_numpy()
     assert np.all(np.abs(launch.beta_column - printed) <= 0.005)
-    assert harp.drag_area_m2(model) == harp.beta_column_drag_area("barbados", model)[0]
+    assert apogees.drag_area_m2(model) == apogees.beta_column_drag_area("barbados", model)[0]
 
 
 def test_dissertation_drag_area_is_the_error_columns_and_reproduces_yuma_beta():
-    best, low, high = harp.fit_drag_area_to_errors()
-    assert harp.drag_area_m2("dissertation") == best and low < best < high
-    launch = harp.launch_corrections("yuma", "dissertation")
+    best, low, high = apogees.fit_drag_area_to_errors()
+    assert apogees.drag_area_m2("dissertation") == best and low < best < high
+    launch = apogees.launch_corrections("yuma", "dissertation")
     assert np.all(np.abs(launch.beta_column - 0.16) <= 0.005)
     # and the same Cd0 A falls outside Appendix D's Beta interval (ch6.drag_unchanged_at_yuma)
-    assert harp.drag_transfer_gap() > 0.0
+    assert apogees.drag_transfer_gap() > 0.0
 
 
 @pytest.mark.parametrize("site", SITES)
 def test_speed_of_sound_reproduces_every_printed_mach(site):
-    central, low, high = harp.speed_of_sound(site)
+    central, low, high = apogees.speed_of_sound(site)
     assert low <= central <= high
-    rounds = harp.appendix_rounds(site)
+    rounds = apogees.appendix_rounds(site)
     assert np.all(np.abs(rounds.muzzle_speed_m_s / central - rounds.mach) <= 0.005)
     # a physical air temperature, 0-40 deg C
-    assert 273.15 < harp.air_temperature_k(central) < 313.15
+    assert 273.15 < apogees.air_temperature_k(central) < 313.15
 
 
 def test_beta_column_interval_is_exact_at_its_ends():
-    _, low, high = harp.beta_column_drag_area("barbados", "printed_columns")
+    _, low, high = apogees.beta_column_drag_area("barbados", "printed_columns")
     for area, inside in (
         (low * (1 + 1e-9), True),
         (low * (1 - 1e-6), False),
         (high * (1 - 1e-9), True),
         (high * (1 + 1e-6), False),
     ):
-        beta = harp.launch_corrections("barbados", "printed_columns", area).beta_column
-        printed = harp.appendix_rounds("barbados").beta.to_numpy()
+        beta = apogees.launch_corrections("barbados", "printed_columns", area).beta_column
+        printed = apogees.appendix_rounds("barbados").beta.to_numpy()
         assert bool(np.all(np.abs(beta - printed) <= 0.005 + 1e-12)) == inside
 
 
 def test_results_are_copies():
-    frame = harp.predicted_apogees("yuma")
+    frame = apogees.predicted_apogees("yuma")
     frame.loc[:, "predicted_apogee_m"] = 0.0
-    assert harp.predicted_apogees("yuma").predicted_apogee_m.min() > 9e4
-    rounds = harp.appendix_rounds("yuma")
+    assert apogees.predicted_apogees("yuma").predicted_apogee_m.min() > 9e4
+    rounds = apogees.appendix_rounds("yuma")
     rounds.loc[:, "muzzle_speed_m_s"] = 0.0
-    assert harp.appendix_rounds("yuma").muzzle_speed_m_s.min() > 1000
+    assert apogees.appendix_rounds("yuma").muzzle_speed_m_s.min() > 1000
 
 
 TEXT_STD_KM = {"barbados": 2.25, "yuma": 2.65}  # Ch. 6 C and D's standard deviations
@@ -115,10 +116,10 @@ def test_residual_table_holds_each_model_s_measured_minus_predicted_statistics()
     rows (round 181's repeat dropped from Barbados' distinct rounds only). The deviation is the
     rounds' own scatter, which a 5 % change of Cd0 A (the models' spread) moves by a few
     percent: every model's lies within 5 % of the text's."""
-    table = harp.residual_table()
+    table = apogees.residual_table()
     assert len(table) == len(eci.MODELS) * 2 * 2
     for row in table.itertuples():
-        frame = harp.predicted_apogees(row.site, row.model)
+        frame = apogees.predicted_apogees(row.site, row.model)
         if row.rows == "distinct rounds":
             frame = frame[~frame.duplicate_of_earlier_row]
         assert len(frame) == 22 + (row.site == "barbados" and row.rows == "all printed")
@@ -146,12 +147,14 @@ def test_speed_file_errors_name_the_line(tmp_path, text, message):
 
 
 def test_missing_round_speed_is_named(monkeypatch):
-    monkeypatch.setattr(harp, "load_muzzle_speeds", lambda site: load_muzzle_speeds(site).iloc[1:])
-    harp._appendix_rounds.cache_clear()
+    monkeypatch.setattr(
+        apogees, "load_muzzle_speeds", lambda site: load_muzzle_speeds(site).iloc[1:]
+    )
+    apogees._appendix_rounds.cache_clear()
     try:
         with pytest.raises(ValueError, match="no recovered muzzle speed"):
-            harp.appendix_rounds("yuma")
+            apogees.appendix_rounds("yuma")
     finally:
         monkeypatch.undo()
-        harp._appendix_rounds.cache_clear()
-    assert math.isfinite(harp.appendix_rounds("yuma").muzzle_speed_m_s.sum())
+        apogees._appendix_rounds.cache_clear()
+    assert math.isfinite(apogees.appendix_rounds("yuma").muzzle_speed_m_s.sum())

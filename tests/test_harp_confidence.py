@@ -12,8 +12,10 @@ from hypothesis import strategies as st
 from scipy import stats
 from scipy.optimize import least_squares, minimize_scalar
 
-from harp_analysis import earth, harp, harp_confidence
-from harp_analysis.harp_data import FOOT_M
+from harp_analysis.analyses.harp import apogees as harp
+from harp_analysis.analyses.harp import confidence as harp_confidence
+from harp_analysis.analyses.harp.appendices import FOOT_M
+from harp_analysis.foundation import earth
 
 SITES = ("barbados", "yuma")
 FEW = 499  # resamples where only determinism or a loose comparison is asserted

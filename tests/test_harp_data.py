@@ -11,8 +11,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from harp_analysis import harp_data
-from harp_analysis.harp_data import (
+from harp_analysis.analyses.harp import appendices
+from harp_analysis.analyses.harp.appendices import (
     MUZZLE_SPEEDS_FILE,
     PLAUSIBLE_RANGES,
     HarpDataError,
@@ -22,8 +22,8 @@ from harp_analysis.harp_data import (
     load_yuma,
     verify_checksums,
 )
-from harp_analysis.paths import HARP_DATA_DIR
-from harp_analysis.sites import BARBADOS, YUMA, dms_to_deg, get_site
+from harp_analysis.foundation.paths import HARP_DATA_DIR
+from harp_analysis.models.sites import BARBADOS, YUMA, dms_to_deg, get_site
 
 FOOT_M = 0.3048
 POUND_KG = 0.4536  # the factor used in the dissertation's tables, not the exact 0.45359237
@@ -200,7 +200,7 @@ def test_dms_to_deg():
 
 # --- plausible ranges ----------------------------------------------------------------------------
 def test_every_column_has_documented_bounds():
-    assert set(PLAUSIBLE_RANGES) == set(harp_data._COLUMNS) | {"vo_ft_s"}
+    assert set(PLAUSIBLE_RANGES) == set(appendices._COLUMNS) | {"vo_ft_s"}
     for bounds in PLAUSIBLE_RANGES.values():
         assert bounds.low < bounds.high and bounds.reason
 
@@ -214,7 +214,7 @@ def _with_field(site, column, value):
     """The test row of ``site`` (line, text) with ``column`` set to ``value``."""
     line, row = {"barbados": (7, BARBADOS_ROW_7), "yuma": (6, YUMA_ROW_6)}[site]
     fields = row.split("\t")
-    fields[harp_data._LAYOUTS[site][1].index(column)] = value
+    fields[appendices._LAYOUTS[site][1].index(column)] = value
     return line, "\t".join(fields)
 
 
@@ -320,7 +320,7 @@ def package_copy(tmp_path, monkeypatch):
     copy.mkdir()
     for name in ("SHA256SUMS", *verify_checksums()):
         shutil.copy(HARP_DATA_DIR / name, copy / name)
-    monkeypatch.setattr(harp_data, "HARP_DATA_DIR", copy)
+    monkeypatch.setattr(appendices, "HARP_DATA_DIR", copy)
     return copy
 
 
@@ -451,7 +451,7 @@ def _assert_plausible(frame, columns):
     assert len(frame) > 0
     for column in columns:
         bounds = PLAUSIBLE_RANGES[column]
-        loaded, scale = harp_data._COLUMNS[column]
+        loaded, scale = appendices._COLUMNS[column]
         scale = 1 if scale is None else scale
         values = frame[loaded].to_numpy(dtype=float)
         # Scaling is monotonic, so a value inside the printed bounds stays inside the scaled ones.
@@ -465,7 +465,7 @@ def _assert_plausible(frame, columns):
 def test_fuzzed_appendix_loads_plausible_values_or_raises_harp_data_error(
     tmp_path_factory, site, data
 ):
-    name = harp_data._LAYOUTS[site][0]
+    name = appendices._LAYOUTS[site][0]
     text = data.draw(_file_text(name))
     path = tmp_path_factory.mktemp("fuzz") / name
     path.write_text(text, encoding="utf-8", newline="")
@@ -474,7 +474,7 @@ def test_fuzzed_appendix_loads_plausible_values_or_raises_harp_data_error(
     except HarpDataError as error:
         assert str(path) in str(error)
         return
-    _assert_plausible(frame, harp_data._LAYOUTS[site][1])
+    _assert_plausible(frame, appendices._LAYOUTS[site][1])
     assert frame["round_number"].dtype.kind == "i"
 
 

@@ -8,9 +8,13 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-from harp_analysis import earth, eci, harp, harp_figures, harp_rounds
-from harp_analysis.harp_data import HarpDataError
-from harp_analysis.sites import BARBADOS
+from harp_analysis.analyses.harp import apogees as harp
+from harp_analysis.analyses.harp import rounds as harp_rounds
+from harp_analysis.analyses.harp.appendices import HarpDataError
+from harp_analysis.engines import eci
+from harp_analysis.foundation import earth
+from harp_analysis.models.sites import BARBADOS
+from harp_analysis.reporting.figures import harp as harp_figures
 
 GOOD_TRACK = """# source: test fixture, not data
 time_s,altitude_km,range_km,radar
@@ -120,7 +124,7 @@ def test_no_radar_file_gives_none_and_the_caption_says_so(radar_dir):
     """Without a radar file the figure draws no radar series and, a note being caption text,
     writes none on the page (its one text is the title naming the case): the registry's
     caption says the tracks are not in the text."""
-    from harp_analysis.registry import get_entry
+    from harp_analysis.reporting.registry import get_entry
 
     assert harp_rounds.load_radar_track("barbados", 181) is None
     fig = harp_figures.draw_round_figure("barbados", 181)

@@ -7,7 +7,8 @@ import tempfile
 
 import pytest
 
-from harp_analysis import paths, plotting
+from harp_analysis.foundation import paths
+from harp_analysis.reporting import plotting
 
 
 def _mode(path):

@@ -19,10 +19,11 @@ assert "site-packages" in harp_analysis.__file__, harp_analysis.__file__
 names = [m.name for m in pkgutil.iter_modules(harp_analysis.__path__) if not m.name.startswith("_")]
 for name in names:
     importlib.import_module(f"harp_analysis.{name}")
-from harp_analysis import harp_data, harp, paths
-assert len(harp_data.load_barbados()) == 23 and len(harp_data.load_yuma()) == 22
-assert len(harp_data.verify_checksums()) == 3
-assert len(harp.predicted_apogees("yuma")) == 22
+from harp_analysis.analyses.harp import apogees, appendices
+from harp_analysis.foundation import paths
+assert len(appendices.load_barbados()) == 23 and len(appendices.load_yuma()) == 22
+assert len(appendices.verify_checksums()) == 3
+assert len(apogees.predicted_apogees("yuma")) == 22
 try:
     paths.REGISTRY_DIR
 except RuntimeError as error:

@@ -9,10 +9,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from harp_analysis import eci, mks, threedof
-from harp_analysis.launch import BOUNDS, Launch, Launches, baseline_chapter_4
-from harp_analysis.projectiles import BASELINE, HP
-from harp_analysis.validation import ModelValidityWarning
+from harp_analysis.engines import eci, mks, threedof
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models.launch import BOUNDS, Launch, Launches, baseline_chapter_4
+from harp_analysis.models.projectiles import BASELINE, HP
 
 ELEVATIONS = np.array([30.0, 45.0, 65.0, 85.0])
 BEARINGS = np.array([0.0, 90.0, 200.0, 300.0])
@@ -198,7 +198,7 @@ def test_engines_refuse_or_warn_per_launch_and_say_which():
 
 
 def test_the_improved_mks_of_launches_is_that_of_each_launch():
-    from harp_analysis import mks_improved
+    from harp_analysis.engines import mks_improved
 
     launches = rotating(ELEVATIONS[:2], BEARINGS[:2])
     together = mks_improved.solve(launches)

@@ -6,18 +6,11 @@ from difflib import SequenceMatcher
 
 import pytest
 
-from harp_analysis import (
-    claims_extra,
-    comparisons,
-    effort,
-    harp,
-    harp_rounds,
-    ledger,
-    mks_improvement,
-    paths,
-    registry,
-    rotating,
-)
+from harp_analysis.analyses import comparisons, effort, mks_improvement, rotating
+from harp_analysis.analyses.claims import extra as claims_extra
+from harp_analysis.analyses.harp import apogees, rounds
+from harp_analysis.foundation import paths
+from harp_analysis.reporting import ledger, registry
 
 CLAIMS = ledger.load_claims()
 
@@ -210,7 +203,7 @@ def test_chapter_5_worst_case_is_scored_in_both_airs():
     airs = {
         claim.kwargs.get("atmosphere")
         for claim in CLAIMS
-        if claim.compute == "harp_analysis.rotating:worst_error_at_apogee_km"
+        if claim.compute == "harp_analysis.analyses.rotating:worst_error_at_apogee_km"
     }
     assert airs == {"two_segment", "three_layer"}
 
@@ -243,12 +236,12 @@ _TYPED = [
     (
         "ch6.round181.range",
         "36.5 km",
-        lambda: f"{harp_rounds.splash_range_km(model='consistent'):.1f} km",
+        lambda: f"{rounds.splash_range_km(model='consistent'):.1f} km",
     ),
     (
         "ch6.round181.range",
         "18.6 km",
-        lambda: f"{harp_rounds.splash_range_km(model='printed_columns'):.1f} km",
+        lambda: f"{rounds.splash_range_km(model='printed_columns'):.1f} km",
     ),
     (
         "ch5.worst_error_high_elevations",
@@ -269,7 +262,7 @@ _TYPED = [
 
 
 def _equivalence(quantity: str, margin: float, relative: bool = False) -> float:
-    return harp.site_equivalence_p_value(quantity, margin=margin, relative=relative)
+    return apogees.site_equivalence_p_value(quantity, margin=margin, relative=relative)
 
 
 _TYPED += [
@@ -286,7 +279,7 @@ _TYPED += [
     (
         "ch6.yuma.equivalent_muzzle_speeds",
         "p = 0.11",
-        lambda: f"p = {harp.site_difference_p_value('muzzle_speed'):.2f}",
+        lambda: f"p = {apogees.site_difference_p_value('muzzle_speed'):.2f}",
     ),
     (
         "ch6.sites_apogee_agree",
@@ -298,7 +291,7 @@ _TYPED += [
         "p = 0.092 (0.41 and 0.40",
         lambda: "p = {:.3f} ({:.2f} and {:.2f}".format(
             *(
-                harp.site_difference_p_value("residual", model=model)
+                apogees.site_difference_p_value("residual", model=model)
                 for model in ("dissertation", "consistent", "printed_columns")
             )
         ),

@@ -8,10 +8,12 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from harp_analysis import earth, kepler, mks, trajectory
-from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, Launch, baseline_chapter_4
-from harp_analysis.projectiles import BASELINE, HP
-from harp_analysis.validation import ModelValidityWarning
+from harp_analysis.engines import kepler, mks
+from harp_analysis.foundation import earth
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models import trajectory
+from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2, Launch, baseline_chapter_4
+from harp_analysis.models.projectiles import BASELINE, HP
 
 ELEVATIONS_DEG = (30.0, 45.0, 65.0, 85.0)
 ELEVATIONS = np.radians(ELEVATIONS_DEG)
@@ -398,8 +400,8 @@ def test_arguments_of_different_lengths_are_refused():
 
 WARM_UP_THEN_USE = """
 import json, numpy as np, numba
-from harp_analysis import mks
-from harp_analysis.launch import baseline_chapter_4
+from harp_analysis.engines import mks
+from harp_analysis.models.launch import baseline_chapter_4
 kernels = [k for k in vars(mks).values() if isinstance(k, numba.core.registry.CPUDispatcher)]
 count = lambda: sum(len(k.signatures) for k in kernels)
 mks.warm_up()

@@ -15,9 +15,10 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from harp_analysis import kepler, mks, mks_improved, mks_improvement
-from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, baseline_chapter_4
-from harp_analysis.validation import ModelValidityWarning
+from harp_analysis.analyses import mks_improvement
+from harp_analysis.engines import kepler, mks, mks_improved
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2, baseline_chapter_4
 
 NON_ROTATING_JUDGED = [
     launch for launch in mks_improvement.JUDGING if launch.rotation_rate_rad_s == 0.0
@@ -277,7 +278,7 @@ def test_a_westward_descent_that_loses_all_its_momentum_is_named():
     inertial h toward its own: a trial step of the re-entry march lost all of h and divided by
     zero (ZeroDivisionError, issue 25); now the march shortens such a step, as scipy's does,
     and the decay that still loses all of h is refused by name."""
-    from harp_analysis.fire_control import BARBADOS_HP
+    from harp_analysis.analyses.fire_control.firing import BARBADOS_HP
 
     launch = BARBADOS_HP.but(elevation_deg=30.845228653704602, bearing_deg=269.9255856283873)
     with pytest.raises(ValueError, match="loses all of h before the impact"):
@@ -337,7 +338,7 @@ def test_beyond_the_drag_it_was_judged_on_the_improved_mks_warns():
     """MAX_JUDGED_BETA is the largest beta of the fitting and judging launches (not a number
     chosen to pass a grid); beyond it the improved MKS warns, and indeed misses the 3DOF's
     apogee by far more than it does inside (HP at 1 km/s and 45 deg, beta 0.54)."""
-    from harp_analysis import eci, threedof
+    from harp_analysis.engines import eci, threedof
 
     judged = mks_improvement.TRAINING + mks_improvement.JUDGING
     betas = [float(eci.solution_for_launch(one, warn=False).beta.flat[0]) for one in judged]

@@ -11,8 +11,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from harp_analysis import mks, mks_improved, mks_improvement, threedof
-from harp_analysis.validation import ModelValidityWarning
+from harp_analysis.analyses import mks_improvement
+from harp_analysis.engines import mks, mks_improved, threedof
+from harp_analysis.foundation.validation import ModelValidityWarning
 
 SUBSET = {"speeds_m_s": (1500.0, 3000.0), "elevations_deg": (35.0, 65.0)}
 

@@ -15,13 +15,14 @@ import warnings
 import numpy as np
 import pytest
 
-from harp_analysis import earth, kepler, mlt, sixdof
-from harp_analysis.atmosphere import get_atmosphere
-from harp_analysis.drag import M829
-from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, baseline_chapter_4, chapter_2
-from harp_analysis.projectiles import HP, LP
-from harp_analysis.trajectory import BASE_COLUMNS, METADATA_KEYS, TruncatedFlightWarning
-from harp_analysis.validation import ModelValidityWarning
+from harp_analysis.engines import kepler, mlt, sixdof
+from harp_analysis.foundation import earth
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models.atmosphere import get_atmosphere
+from harp_analysis.models.drag import M829
+from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2, baseline_chapter_4, chapter_2
+from harp_analysis.models.projectiles import HP, LP
+from harp_analysis.models.trajectory import BASE_COLUMNS, METADATA_KEYS, TruncatedFlightWarning
 
 R, GM = earth.RADIUS_M, earth.GM_M3_S2
 G0 = GM / R**2

@@ -9,11 +9,12 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from harp_analysis import earth, kepler, mks
-from harp_analysis import nonlinear_kepler as nk
-from harp_analysis.atmosphere import get_atmosphere
-from harp_analysis.launch import HP_CHAPTER_2, baseline_chapter_4
-from harp_analysis.projectiles import HP
+from harp_analysis.engines import kepler, mks
+from harp_analysis.engines import nonlinear_kepler as nk
+from harp_analysis.foundation import earth
+from harp_analysis.models.atmosphere import get_atmosphere
+from harp_analysis.models.launch import HP_CHAPTER_2, baseline_chapter_4
+from harp_analysis.models.projectiles import HP
 
 ELEVATIONS_DEG = (30.0, 45.0, 65.0, 85.0)
 #: Chapter 2 A's HP at 50 deg and 2022 m/s, without its wind (the MKS has none).

@@ -12,7 +12,7 @@ import nbformat
 import pytest
 from nbclient import NotebookClient
 
-from harp_analysis import paths
+from harp_analysis.foundation import paths
 
 NOTEBOOKS = sorted(paths.NOTEBOOKS_DIR.glob("*.ipynb"))
 CHANGED = """projectile = "LP"
@@ -23,7 +23,7 @@ baseline_elevations_deg = (45.0,)
 """
 CHECK = """
 import numpy as np
-from harp_analysis.projectiles import LP
+from harp_analysis.models.projectiles import LP
 
 assert launch.projectile == LP and launch.elevation_deg == 60.0
 assert launch.speed_m_s == 2100.0 and launch.cross_wind_m_s == -3.0

@@ -5,7 +5,8 @@ import re
 
 import pytest
 
-from harp_analysis import gallery, paths, registry
+from harp_analysis.foundation import paths
+from harp_analysis.reporting import gallery, registry
 
 ENTRIES = registry.load_registry()
 EXTENSIONS = [entry for entry in ENTRIES if entry.extension]

@@ -12,8 +12,10 @@ import pandas as pd
 import pytest
 from matplotlib.lines import Line2D
 
-from harp_analysis import budget_figures, error_budget, rotating_figures
-from harp_analysis.plotting import FULL_WIDTH_IN, new_figure
+from harp_analysis.analyses import error_budget
+from harp_analysis.reporting.figures import error_budget as budget_figures
+from harp_analysis.reporting.figures import rotating_earth
+from harp_analysis.reporting.plotting import FULL_WIDTH_IN, new_figure
 
 
 def _fits_the_page(fig):
@@ -41,7 +43,7 @@ def test_labels_sit_beside_their_own_curves():
     ax.set_xlim(0, 10)
     ax.set_ylim(0, 10)
     fig.canvas.draw()
-    texts = rotating_figures.label_beside_curves(ax, lines, ["rising", "falling"])
+    texts = rotating_earth.label_beside_curves(ax, lines, ["rising", "falling"])
     renderer = fig.canvas.get_renderer()
     for text, own, other in zip(texts, lines, lines[::-1]):
         box = text.get_window_extent(renderer)
@@ -56,11 +58,11 @@ def test_labels_sit_beside_their_own_curves():
 
 def test_off_scale_mark_is_no_elevation_marker():
     """Fig 5.5's clash: the mark where a curve leaves the axis had the 65 deg curve's triangle."""
-    from harp_analysis.plotting import elevation_style
-    from harp_analysis.rotating import ELEVATIONS_DEG
+    from harp_analysis.analyses.rotating import ELEVATIONS_DEG
+    from harp_analysis.reporting.plotting import elevation_style
 
     markers = {elevation_style(e, ELEVATIONS_DEG)["marker"] for e in ELEVATIONS_DEG}
-    assert rotating_figures._OFF_SCALE["marker"] not in markers | {"*"}
+    assert rotating_earth._OFF_SCALE["marker"] not in markers | {"*"}
 
 
 def test_input_sizes_are_printed_in_a_readers_unit():
@@ -170,13 +172,13 @@ def test_error_maps_mark_the_sign_where_the_improved_mks_is_farther():
     assert list(zip(dot.get_xdata(), dot.get_ydata())) == [(0.0, 60.0)]
 
 
-@pytest.mark.parametrize("number", list(rotating_figures.SCHEMATICS))
+@pytest.mark.parametrize("number", list(rotating_earth.SCHEMATICS))
 def test_schematics_fit_the_page(number):
-    from harp_analysis import eci
-    from harp_analysis.launch import baseline_chapter_4
+    from harp_analysis.engines import eci
+    from harp_analysis.models.launch import baseline_chapter_4
 
     shot = baseline_chapter_4(45.0, rotation_rate_rad_s=7.292115e-5)
     correction = eci.correction_for_launch(shot)
-    fig = rotating_figures.draw_launch_schematic(number, correction, shot.latitude_rad, "case")
+    fig = rotating_earth.draw_launch_schematic(number, correction, shot.latitude_rad, "case")
     _fits_the_page(fig)
     assert all(isinstance(h, Line2D) for h in fig.legends[0].legend_handles)

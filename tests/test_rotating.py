@@ -7,8 +7,10 @@ reproduced, so it is no threshold: the ledger scores it.)"""
 import numpy as np
 import pytest
 
-from harp_analysis import comparisons, earth, eci, rotating
-from harp_analysis.launch import baseline_chapter_4
+from harp_analysis.analyses import comparisons, rotating
+from harp_analysis.engines import eci
+from harp_analysis.foundation import earth
+from harp_analysis.models.launch import baseline_chapter_4
 
 AIRS = ("two_segment", "three_layer")  # eqs 2.1-2.2, and Appendix A's 3DOF listing
 

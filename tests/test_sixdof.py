@@ -11,13 +11,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from harp_analysis import earth, sixdof, threedof
-from harp_analysis.atmosphere import get_atmosphere
-from harp_analysis.drag import M829
-from harp_analysis.launch import HP_CHAPTER_2, LP_CHAPTER_2, Launch, chapter_2
-from harp_analysis.projectiles import HP, LP
-from harp_analysis.trajectory import BASE_COLUMNS, METADATA_KEYS, TruncatedFlightWarning
-from harp_analysis.validation import ModelValidityWarning
+from harp_analysis.engines import sixdof, threedof
+from harp_analysis.foundation import earth
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models.atmosphere import get_atmosphere
+from harp_analysis.models.drag import M829
+from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2, Launch, chapter_2
+from harp_analysis.models.projectiles import HP, LP
+from harp_analysis.models.trajectory import BASE_COLUMNS, METADATA_KEYS, TruncatedFlightWarning
 
 R, GM = earth.RADIUS_M, earth.GM_M3_S2
 
@@ -449,7 +450,7 @@ def test_bad_derivative_input_is_named():
 def test_reference_6dof_is_converged_under_the_method_differences():
     # Step refinement for the adaptive solver: a hundred times tighter tolerance moves HP's
     # reference flight by far less than the 16-50 m between the 3DOF or MLT and the 6DOF.
-    from harp_analysis.mlt_validation import sixdof_convergence
+    from harp_analysis.analyses.mlt_validation import sixdof_convergence
 
     table = sixdof_convergence("HP", rtols=(1e-11,))
     assert table.max_position_difference_m.iloc[0] < 0.1

@@ -20,8 +20,8 @@ from distributed import Client, LocalCluster
 from hypothesis import given
 from hypothesis import strategies as st
 
-from harp_analysis import sweeps
-from harp_analysis.sweeps import chunks, sample_chunk, sweep
+from harp_analysis.foundation import sweeps
+from harp_analysis.foundation.sweeps import chunks, sample_chunk, sweep
 
 SEED = 20130501
 
@@ -370,18 +370,18 @@ def test_a_worker_killed_mid_sweep_loses_and_duplicates_no_sample(client):
 
 @on_cluster
 def test_a_raid_and_its_verification_are_the_same_on_the_cluster(client):
-    from harp_analysis import fire_control
+    from harp_analysis.analyses.fire_control import firing
 
-    gun = fire_control.BARBADOS_HP
-    raid = fire_control.raid(gun, 3)
-    here = fire_control.raid_windows(gun, raid, count=8)
-    there = fire_control.raid_windows(gun, raid, count=8, client=client)
+    gun = firing.BARBADOS_HP
+    raid = firing.raid(gun, 3)
+    here = firing.raid_windows(gun, raid, count=8)
+    there = firing.raid_windows(gun, raid, count=8, client=client)
     assert [w.intercepts for w in here] == [w.intercepts for w in there]
-    pairs = fire_control.raid_roots(here)
+    pairs = firing.raid_roots(here)
     assert pairs, "the small raid has feasible intercepts"
     aims, roots = [item.aim for item, _ in pairs], [root for _, root in pairs]
-    local = fire_control.verify_with_3dof(gun, aims, roots, tolerance_m=1.0)
-    remote = fire_control.verify_with_3dof(gun, aims, roots, tolerance_m=1.0, client=client)
+    local = firing.verify_with_3dof(gun, aims, roots, tolerance_m=1.0)
+    remote = firing.verify_with_3dof(gun, aims, roots, tolerance_m=1.0, client=client)
     np.testing.assert_equal(
         [dataclasses.astuple(v) for v in remote], [dataclasses.astuple(v) for v in local]
     )

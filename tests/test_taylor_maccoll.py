@@ -7,8 +7,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from harp_analysis.drag import BASELINE_CONE, ExponentialDragLaw
-from harp_analysis.taylor_maccoll import (
+from harp_analysis.models.drag import BASELINE_CONE, ExponentialDragLaw
+from harp_analysis.models.taylor_maccoll import (
     BASELINE_HALF_ANGLE_RAD,
     EQ_4_8_MACH_GRID,
     TRAJECTORY_MACH_RANGE,

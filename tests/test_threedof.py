@@ -11,12 +11,14 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
-from harp_analysis import earth, kepler, threedof, trajectory
-from harp_analysis.atmosphere import two_segment_speed_of_sound
-from harp_analysis.drag import BASELINE_CONE, M829, TabulatedDragLaw, get_drag_law
-from harp_analysis.launch import Launch
-from harp_analysis.projectiles import BASELINE, HP, Projectile, get_projectile
-from harp_analysis.validation import ModelValidityWarning
+from harp_analysis.engines import kepler, threedof
+from harp_analysis.foundation import earth
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models import trajectory
+from harp_analysis.models.atmosphere import two_segment_speed_of_sound
+from harp_analysis.models.drag import BASELINE_CONE, M829, TabulatedDragLaw, get_drag_law
+from harp_analysis.models.launch import Launch
+from harp_analysis.models.projectiles import BASELINE, HP, Projectile, get_projectile
 
 #: Chapter 4 B's baseline cone at 2157 m/s and 45 deg, no wind, two-segment air.
 BASELINE_45 = Launch(BASELINE, 2157.0, 45.0)
@@ -135,7 +137,7 @@ def test_agrees_with_scipy_solve_ivp(baseline_flights):
     """The same equations through scipy's own DOP853 and event location."""
     flight = baseline_flights[1e-12]
     area, mass = BASELINE.reference_area_m2, BASELINE.mass_kg
-    from harp_analysis.atmosphere import get_atmosphere
+    from harp_analysis.models.atmosphere import get_atmosphere
 
     air = get_atmosphere("two_segment")
 

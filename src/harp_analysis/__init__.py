@@ -7,7 +7,7 @@ The names a user starts from are importable here (``from harp_analysis import La
 simulate_3dof``): a launch and the text's named ones, the projectiles and sites, each engine's
 flight, the firing solutions and the warnings the models give. Each is imported on first use,
 so ``import harp_analysis`` starts no compiler; everything else lives in its module
-(``harp_analysis.harp``, ``harp_analysis.error_budget``, ...).
+(``harp_analysis.analyses.harp.apogees``, ``harp_analysis.analyses.error_budget``, ...).
 """
 
 # ruff: noqa: F401  (the TYPE_CHECKING imports name the lazy attributes for type checkers)
@@ -21,53 +21,60 @@ __version__ = "0.1.0"
 #: Public name -> the module that defines it.
 _API = {
     # launches
-    "Launch": "launch",
-    "Launches": "launch",
-    "chapter_2": "launch",
-    "baseline_chapter_4": "launch",
-    "HP_CHAPTER_2": "launch",
-    "LP_CHAPTER_2": "launch",
+    "Launch": "models.launch",
+    "Launches": "models.launch",
+    "chapter_2": "models.launch",
+    "baseline_chapter_4": "models.launch",
+    "HP_CHAPTER_2": "models.launch",
+    "LP_CHAPTER_2": "models.launch",
     # projectiles and sites
-    "Projectile": "projectiles",
-    "HP": "projectiles",
-    "LP": "projectiles",
-    "BASELINE": "projectiles",
-    "get_projectile": "projectiles",
-    "BARBADOS": "sites",
-    "YUMA": "sites",
-    "get_site": "sites",
-    "get_atmosphere": "atmosphere",
+    "Projectile": "models.projectiles",
+    "HP": "models.projectiles",
+    "LP": "models.projectiles",
+    "BASELINE": "models.projectiles",
+    "get_projectile": "models.projectiles",
+    "BARBADOS": "models.sites",
+    "YUMA": "models.sites",
+    "get_site": "models.sites",
+    "get_atmosphere": "models.atmosphere",
     # the engines, one flight each, all returning the shared trajectory table
-    "simulate_3dof": "threedof",
-    "fly_3dof": "threedof",
-    "simulate_6dof": "sixdof",
-    "simulate_mlt": "mlt",
-    "simulate_mks": "mks",
-    "simulate_appendix_a": "appendix_a",
+    "simulate_3dof": "engines.threedof",
+    "fly_3dof": "engines.threedof",
+    "simulate_6dof": "engines.sixdof",
+    "simulate_mlt": "engines.mlt",
+    "simulate_mks": "engines.mks",
+    "simulate_appendix_a": "engines.appendix_a",
     # fire control
-    "TargetPoint": "fire_control",
-    "destination": "fire_control",
-    "firing_solutions": "fire_control",
+    "TargetPoint": "analyses.fire_control.firing",
+    "destination": "analyses.fire_control.firing",
+    "firing_solutions": "analyses.fire_control.firing",
     # what the models warn of
-    "ModelValidityWarning": "validation",
-    "TruncatedFlightWarning": "trajectory",
+    "ModelValidityWarning": "foundation.validation",
+    "TruncatedFlightWarning": "models.trajectory",
 }
 
 __all__ = ["__version__", *_API]
 
 if TYPE_CHECKING:  # for type checkers and editors; at run time each name is imported lazily
-    from .appendix_a import simulate_appendix_a
-    from .atmosphere import get_atmosphere
-    from .fire_control import TargetPoint, destination, firing_solutions
-    from .launch import HP_CHAPTER_2, LP_CHAPTER_2, Launch, Launches, baseline_chapter_4, chapter_2
-    from .mks import simulate_mks
-    from .mlt import simulate_mlt
-    from .projectiles import BASELINE, HP, LP, Projectile, get_projectile
-    from .sites import BARBADOS, YUMA, get_site
-    from .sixdof import simulate_6dof
-    from .threedof import fly_3dof, simulate_3dof
-    from .trajectory import TruncatedFlightWarning
-    from .validation import ModelValidityWarning
+    from .analyses.fire_control.firing import TargetPoint, destination, firing_solutions
+    from .engines.appendix_a import simulate_appendix_a
+    from .engines.mks import simulate_mks
+    from .engines.mlt import simulate_mlt
+    from .engines.sixdof import simulate_6dof
+    from .engines.threedof import fly_3dof, simulate_3dof
+    from .foundation.validation import ModelValidityWarning
+    from .models.atmosphere import get_atmosphere
+    from .models.launch import (
+        HP_CHAPTER_2,
+        LP_CHAPTER_2,
+        Launch,
+        Launches,
+        baseline_chapter_4,
+        chapter_2,
+    )
+    from .models.projectiles import BASELINE, HP, LP, Projectile, get_projectile
+    from .models.sites import BARBADOS, YUMA, get_site
+    from .models.trajectory import TruncatedFlightWarning
 
 
 def __getattr__(name: str) -> Any:

@@ -19,7 +19,7 @@ from selenium.webdriver.common.by import By
 from selenium.webdriver.common.keys import Keys
 from selenium.webdriver.support.ui import Select, WebDriverWait
 
-from harp_analysis import explorer
+from harp_analysis.reporting import explorer
 
 # Bounds on waiting, never asserted times (conftest's FIRST_DRAW_S for the first draw).
 FIRST_DRAW_S = 120.0

@@ -1,0 +1,1 @@
+"""The claims ledger's computations that belong to no analysis of their own."""

@@ -1,0 +1,184 @@
+"""Envelope maps (issue 16 item 4): how far the MKS firing solution misses when the 3DOF flies it.
+
+For each intercept point of a map (a downrange distance along a bearing from the gun, along
+the great circle, times an altitude above the spherical Earth; the point fixed to the Earth,
+met on the trajectory's descending branch) the ECI MKS firing solution
+(:func:`.fire_control.firing_solutions`) is flown once by the 3DOF on the rotating Earth, to
+the target's altitude, and its miss measured: the straight-line distance (m) from the 3DOF's
+Earth-fixed end point to the target's (:meth:`.fire_control.TargetPoint.earth_fixed_m`). It
+is the first step of :func:`.fire_control.verify_with_3dof` without its shooting refinement,
+which would be far too slow for a map. Points with no firing solution keep the reason.
+
+The points run through :func:`.sweeps.sweep`, an altitude's row of them at a time (solved
+together by the compiled solver, the 3DOF flown at them as one batch): in this process, or on
+a Dask cluster.
+
+SI inside (m, s, rad); degrees only in the arguments and columns named ``_deg``.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from functools import partial
+
+import numpy as np
+import pandas as pd
+
+from ...engines import threedof
+from ...foundation.sweeps import sweep
+from ...foundation.validation import check_choice, check_range, finite_array, real_number
+from ...models.launch import Launch, Launches
+from ...models.trajectory import TruncatedFlightWarning
+from .firing import FiringSolution, TargetPoint, destination, firing_solutions
+
+__all__ = ["ROOTS", "MAP_COLUMNS", "three_dof_miss", "miss_map"]
+
+ROOTS = ("low", "high")
+#: The columns of :func:`miss_map`, one row per intercept point.
+MAP_COLUMNS = (
+    "map_bearing_deg",  # the bearing from the gun along which the points lie
+    "root",  # "low" or "high"
+    "downrange_m",  # great-circle distance from the gun to the point's foot, on the surface
+    "altitude_m",
+    "latitude_deg",  # of the point
+    "longitude_deg",
+    "elevation_deg",  # the MKS firing solution (NaN where there is none)
+    "bearing_deg",
+    "time_of_flight_s",  # of the MKS to the point
+    "beta",  # of the ECI launch (validity: below 0.25)
+    "leaves_atmosphere",
+    "mks_miss_m",  # the MKS solution's own residual at the point (fire_control's miss_m)
+    "miss_3dof_m",  # the 3DOF flown at the MKS solution: its miss (NaN where it cannot)
+    "reason",  # why there is no 3DOF miss: no firing solution, or the 3DOF never got there
+)
+
+
+def three_dof_miss(
+    gun: Launch, target: TargetPoint, solution: FiringSolution, *, rtol: float = 1e-9
+) -> float:
+    """The 3DOF (the gun's atmosphere, drag law and Earth rotation) fired once at the firing
+    ``solution``: the distance (m) from where it crosses the target's altitude on the
+    solution's branch to the target; NaN if it never gets there (within the 3DOF's time)."""
+    return float(_three_dof_misses(gun, [target], [solution], rtol)[0])
+
+
+def _three_dof_misses(gun: Launch, targets, solutions, rtol: float) -> np.ndarray:
+    """:func:`three_dof_miss` of every (target, solution) pair, flown as one 3DOF batch."""
+    laid = Launches.from_launches([gun]).but(
+        elevation_deg=np.array([s.elevation_deg for s in solutions]),
+        bearing_deg=np.array([s.bearing_deg for s in solutions]),
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", TruncatedFlightWarning)  # reported as NaN below
+        flight = threedof.fly_3dof(
+            laid,
+            rtol=rtol,
+            end_altitude_m=np.array([t.altitude_m for t in targets]),
+            rising=np.array([s.branch == "ascending" for s in solutions]),
+        )
+    # the 3DOF's Earth-fixed frame has its x axis toward longitude 0
+    aims = np.array([t.earth_fixed_m() for t in targets])
+    distance = np.linalg.norm(flight.end_position_m.T - aims, axis=1)
+    return np.where(flight.impact, distance, np.nan)
+
+
+def _points(
+    points: list[tuple[float, float]],
+    gun: Launch,
+    bearing_deg: float,
+    roots: tuple[str, ...],
+    rtol: float,
+) -> list[dict]:
+    """The rows of the points ``(downrange_m, altitude_m)``, one per root of ``roots``: its
+    firing solution and the 3DOF's miss there, or why there is none (all solved together,
+    the 3DOF flights as one batch)."""
+    targets = [destination(gun, bearing_deg, downrange, altitude) for downrange, altitude in points]
+    rows, flown = [], []
+    for (downrange, altitude), target, solutions in zip(
+        points, targets, firing_solutions(gun, targets), strict=True
+    ):
+        for root in roots:
+            row: dict[str, object] = dict.fromkeys(MAP_COLUMNS, math.nan)
+            row.update(
+                map_bearing_deg=bearing_deg,
+                root=root,
+                downrange_m=downrange,
+                altitude_m=altitude,
+                latitude_deg=target.latitude_deg,
+                longitude_deg=target.longitude_deg,
+                leaves_atmosphere=None,
+                reason=None,
+            )
+            rows.append(row)
+            solution = solutions.low if root == "low" else solutions.high
+            if solution is None:
+                # the reason names each missing root; keep this root's part
+                parts = [p for p in (solutions.reason or "").split("; ") if f"no {root}-angle" in p]
+                row["reason"] = parts[0] if parts else solutions.reason
+                continue
+            row.update(
+                elevation_deg=solution.elevation_deg,
+                bearing_deg=solution.bearing_deg,
+                time_of_flight_s=solution.time_of_flight_s,
+                beta=solution.beta,
+                leaves_atmosphere=solution.leaves_atmosphere,
+                mks_miss_m=solution.miss_m,
+            )
+            flown.append((row, target, solution))
+    if flown:
+        chosen, aims, solved = zip(*flown, strict=True)
+        for row, miss in zip(chosen, _three_dof_misses(gun, aims, solved, rtol), strict=True):
+            row["miss_3dof_m"] = miss
+            if not math.isfinite(miss):
+                row["reason"] = (
+                    "the 3DOF fired at the MKS solution never reaches the target's altitude"
+                )
+    return rows
+
+
+def miss_map(
+    gun: Launch,
+    bearing_deg: float,
+    ranges_m,
+    altitudes_m,
+    *,
+    root: str = "low",
+    rtol: float = 1e-9,
+    client=None,
+    progress: bool = True,
+) -> pd.DataFrame:
+    """The MKS firing solution's 3DOF miss over a map of intercept points: every downrange
+    distance of ``ranges_m`` (m, along ``bearing_deg`` from ``gun``) at every altitude of
+    ``altitudes_m`` (m), met on the descending branch by the ``root`` ("low", "high" or
+    "both") solution. A tidy table, one row per point and root (:data:`MAP_COLUMNS`), ranges
+    varying fastest; ``attrs`` keep the gun, bearing and root. ``client`` and ``progress`` go
+    to :func:`.sweeps.sweep`."""
+    if not isinstance(gun, Launch):
+        raise TypeError(
+            f"gun must be a harp_analysis.models.launch.Launch; got {type(gun).__name__}"
+        )
+    root = check_choice(root, "root", (*ROOTS, "both"))
+    roots = ROOTS if root == "both" else (root,)
+    bearing_deg = check_range(
+        real_number(bearing_deg, "bearing_deg"), "bearing_deg", low=0.0, high=360.0, unit="deg"
+    )
+    ranges = np.ravel(finite_array(ranges_m, "ranges_m"))
+    altitudes = np.ravel(finite_array(altitudes_m, "altitudes_m"))
+    if ranges.size == 0 or np.any(ranges <= 0):
+        raise ValueError("ranges_m must be one or more downrange distances > 0 (m)")
+    if altitudes.size == 0 or np.any(altitudes < 0):
+        raise ValueError("altitudes_m must be one or more altitudes >= 0 (m)")
+    points = [(float(x), float(h)) for h in altitudes for x in ranges]
+    # one altitude's points a chunk: each solved by the compiled solver and flown as one batch
+    chunks = [points[start : start + ranges.size] for start in range(0, len(points), ranges.size)]
+    rows = sweep(
+        partial(_points, gun=gun, bearing_deg=bearing_deg, roots=roots, rtol=rtol),
+        chunks,
+        client=client,
+        progress=progress,
+        description=f"miss map, bearing {bearing_deg:g} deg",
+    )
+    frame = pd.DataFrame([row for chunk in rows for row in chunk], columns=list(MAP_COLUMNS))
+    frame.attrs.update(gun=gun, bearing_deg=bearing_deg, root=root, rtol=rtol)
+    return frame

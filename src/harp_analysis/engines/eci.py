@@ -1,0 +1,702 @@
+"""The rotating-Earth (ECI) corrections of Chapter 5 and the derived columns of Appendices D and E.
+
+The gun fires at ``speed_m_s`` (Vrel, relative to the ground and the air), elevation and bearing;
+in the Earth-centred inertial frame the launch velocity is (eq 6.15)
+
+    V = Vrel + omega x r0 + V_tangent,
+
+with omega x r0 the eastward surface velocity (eq 6.16) and V_tangent the velocity given by the
+drag component across the inertial velocity (eqs 5.4-5.8). The drag lies along Vrel, at the
+misalignment angle mu from V (Ch. 5 B), so only cos(mu) of it decays the angular momentum
+(eq 5.1) and, referred to the inertial speed, the decay carries (Vrel/V)^2 (eqs 5.2-5.3). These
+enter :class:`mks.ModifiedKeplerSolution` as ``drive_scale`` = cos(mu) (Vrel/V)^2 (eqs 6.9-6.10)
+and ``decay_scale`` = cos(mu) (eq 6.14).
+
+Vectors are (3, ...) arrays in the inertial frame of :func:`trajectory.launch_frame` at longitude 0
+(z along the Earth's axis); angles in rad, speeds in m/s, SI throughout.
+
+Sign of V_tangent (the text leaves it open: "in the plane created by the relative velocity and
+the velocity corrected for Earth rotation and tangent to the corrected velocity"). The drag
+acceleration is along -Vrel = -(V - omega x r0); its part normal to V is +(omega x r0)_perp,
+because V has none. So V_tangent points along the part of omega x r0 normal to V, i.e. AWAY
+from Vrel: drag drains the air-relative velocity and leaves the projectile moving more with the
+air, turning V further from the gun line (lower and more eastward for an eastward shot), and mu
+grows. Rotating V back toward Vrel would need a force with a component along +Vrel, which drag
+has not. The printed Appendix D/E columns do not include V_tangent at all (see
+:func:`harp.appendix_columns`, model ``"printed_columns"`` and :data:`PRINTED_COLUMNS`).
+
+The printed equations, checked: eq 5.3 is exact, not an expansion, if Vx is the eastward
+component of the inertial V (omega x r is due east, of size omega r cos LA). Eqs 6.6-6.10 are
+mks's general-n constants for n = 3 (c4 = A_1, c5 = A_2, the c3 term = A_0) with beta ->
+beta cos(mu) (Vrel/V)^2, signs included. Eq 6.8's m^2 MG / L_inf^2 needs L per unit mass
+without the m^2 (eq 6.13's L0 and Appendix Li, km^2/s, are per unit mass); eq 6.11's "2 km" is
+2 k m. Eq 6.14 decays L with beta cos(mu) but drives with beta cos(mu) (Vrel/V)^2, whereas
+h = h_inf exp(beta' gamma) gives both the same beta' (eq 3.23); as printed, and here, they differ
+(Barbados round 181: apogee 120.5 km as printed, 124.6 km with (Vrel/V)^2 in eq 6.14 too).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..foundation import earth
+from ..foundation.compiled import formula, select
+from ..foundation.validation import check_choice, check_range, finite_array
+from ..models.atmosphere import TEXT_DECAY_CONSTANT_PER_M
+from ..models.launch import Launch, Launches
+from ..models.sites import get_site
+from ..models.trajectory import cross, dot, launch_axes, launch_frame
+from . import mks
+
+__all__ = [
+    "EciModel",
+    "CONSISTENT",
+    "DISSERTATION",
+    "PRINTED_COLUMNS",
+    "MODELS",
+    "get_model",
+    "LaunchCorrection",
+    "surface_velocity",
+    "relative_velocity",
+    "misalignment_angle",
+    "speed_ratio_squared",
+    "speed_ratio_squared_eq_5_3",
+    "tangent_speed",
+    "tangent_direction",
+    "elevation_azimuth",
+    "initial_angular_momentum",
+    "corrected_launch",
+    "launch_correction",
+    "eci_solution",
+    "solution_for",
+    "correction_for_launch",
+    "solution_for_launch",
+    "site_surface_speed_km_s",
+    "inertial_positions",
+]
+
+
+def _check_launch(speed_m_s, elevation_rad, bearing_rad, latitude_rad):
+    speed = check_range(
+        finite_array(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0, low_inclusive=False, unit="m/s"
+    )
+    elevation = check_range(
+        finite_array(elevation_rad, "elevation_rad"),
+        "elevation_rad",
+        low=0.0,
+        low_inclusive=False,
+        high=math.pi / 2,
+        unit="rad",
+    )
+    bearing = check_range(
+        finite_array(bearing_rad, "bearing_rad"),
+        "bearing_rad",
+        low=0.0,
+        high=2 * math.pi,
+        high_inclusive=False,
+        unit="rad",
+    )
+    return np.broadcast_arrays(speed, elevation, bearing, _check_latitude(latitude_rad))
+
+
+def _check_latitude(latitude_rad):
+    return check_range(
+        finite_array(latitude_rad, "latitude_rad"),
+        "latitude_rad",
+        low=-math.pi / 2,
+        high=math.pi / 2,
+        unit="rad",
+    )
+
+
+def _components(vectors) -> tuple:
+    """The x, y and z rows of (3, ...) vectors."""
+    array = np.asarray(vectors, dtype=float)
+    return array[0], array[1], array[2]
+
+
+@formula
+def _surface(up, rotation_rate_rad_s, radius_m):
+    """omega x r0 of component triples: omega along the Earth's axis (z), r0 = radius up."""
+    scale = rotation_rate_rad_s * radius_m
+    return -scale * up[1], scale * up[0], 0.0 * up[2]
+
+
+@formula
+def _misalignment(relative, inertial):
+    cosine = dot(relative, inertial) / np.sqrt(dot(relative, relative) * dot(inertial, inertial))
+    return np.arccos(np.minimum(np.maximum(cosine, -1.0), 1.0))
+
+
+@formula
+def _speed_ratio_squared(relative, inertial):
+    return dot(relative, relative) / dot(inertial, inertial)
+
+
+@formula
+def _tangent_speed(
+    drag_area_m2, density, mass_kg, misalignment, relative_speed, climb, decay_constant_per_m
+):
+    return (
+        drag_area_m2
+        * density
+        * np.sin(misalignment)
+        * relative_speed
+        / (2 * mass_kg * decay_constant_per_m * np.sin(climb))
+    )
+
+
+@formula
+def _tangent_direction(relative, inertial):
+    speed = np.sqrt(dot(inertial, inertial))
+    along = dot(relative, inertial) / speed  # Vrel's component along V
+    across = (
+        along * inertial[0] / speed - relative[0],
+        along * inertial[1] / speed - relative[1],
+        along * inertial[2] / speed - relative[2],
+    )
+    size = np.sqrt(dot(across, across))
+    inverse = select(size > 0, 1.0 / select(size > 0, size, 1.0), 0.0 * size)
+    return inverse * across[0], inverse * across[1], inverse * across[2]
+
+
+@formula
+def _elevation_azimuth(velocity, up, east):
+    north = cross(up, east)
+    speed = np.sqrt(dot(velocity, velocity))
+    elevation = np.arcsin(np.minimum(np.maximum(dot(velocity, up) / speed, -1.0), 1.0))
+    azimuth = np.arctan2(dot(velocity, east), dot(velocity, north)) % (2 * math.pi)
+    return elevation, azimuth
+
+
+@formula
+def _initial_angular_momentum(speed_m_s, elevation_rad, radius_m):
+    return speed_m_s * radius_m * np.cos(elevation_rad)
+
+
+@formula
+def corrected_launch(
+    speed_m_s,
+    elevation_rad,
+    bearing_rad,
+    latitude_rad,
+    drag_area_m2,
+    mass_kg,
+    surface_density_kg_m3,
+    decay_constant_per_m,
+    rotation_rate_rad_s,
+    radius_m,
+    include_tangent,
+    tangent_sine_corrected,
+    beta_at_launch,
+    tau_at_launch,
+    ratio_at_launch,
+):
+    """Eqs 5.1-5.8 and 6.11-6.16 of guns at the launch point (longitude 0), written once for
+    numpy (arrays of one shape, the model's flags plain bools) and compiled code (numbers):
+    Vrel, omega x r0, mu, the corrected speed, elevation and azimuth, V_tangent, the launch
+    velocity, its speed, elevation and azimuth, (Vrel/V)^2, beta, tau and L0, vectors as
+    component triples (:func:`launch_correction` names them). The flags are
+    :class:`EciModel`'s choices: ``include_tangent``, ``tangent_sine == "corrected"``,
+    ``beta_elevation == "launch"``, ``tau_elevation == "launch"``, ``speed_ratio == "launch"``."""
+    up, downrange, east = launch_axes(latitude_rad, 0.0 * latitude_rad, bearing_rad)
+    horizontal, vertical = speed_m_s * np.cos(elevation_rad), speed_m_s * np.sin(elevation_rad)
+    relative = (
+        horizontal * downrange[0] + vertical * up[0],
+        horizontal * downrange[1] + vertical * up[1],
+        horizontal * downrange[2] + vertical * up[2],
+    )
+    surface = _surface(up, rotation_rate_rad_s, radius_m)
+    corrected = (relative[0] + surface[0], relative[1] + surface[1], relative[2] + surface[2])
+    mu = _misalignment(relative, corrected)
+    corrected_elevation, corrected_azimuth = _elevation_azimuth(corrected, up, east)
+    climb = select(tangent_sine_corrected, corrected_elevation, elevation_rad)
+    relative_speed = np.sqrt(dot(relative, relative))
+    tangent = _tangent_speed(
+        drag_area_m2,
+        surface_density_kg_m3,
+        mass_kg,
+        mu,
+        relative_speed,
+        climb,
+        decay_constant_per_m,
+    )
+    push = select(include_tangent, tangent, 0.0 * tangent)
+    direction = _tangent_direction(relative, corrected)
+    velocity = (
+        corrected[0] + push * direction[0],
+        corrected[1] + push * direction[1],
+        corrected[2] + push * direction[2],
+    )
+    elevation, azimuth = _elevation_azimuth(velocity, up, east)
+    ratio_of = (
+        select(ratio_at_launch, velocity[0], corrected[0]),
+        select(ratio_at_launch, velocity[1], corrected[1]),
+        select(ratio_at_launch, velocity[2], corrected[2]),
+    )
+    air = (ratio_of[0] - surface[0], ratio_of[1] - surface[1], ratio_of[2] - surface[2])
+    beta = mks.beta_formula(
+        drag_area_m2,
+        surface_density_kg_m3,
+        1.0,
+        mass_kg,
+        select(beta_at_launch, elevation, elevation_rad),
+        decay_constant_per_m,
+    )
+    tau = mks.decay_rate_tau(
+        select(tau_at_launch, elevation, corrected_elevation), decay_constant_per_m, radius_m
+    )
+    speed = np.sqrt(dot(velocity, velocity))
+    return (
+        relative,
+        surface,
+        mu,
+        np.sqrt(dot(corrected, corrected)),
+        corrected_elevation,
+        corrected_azimuth,
+        tangent,
+        velocity,
+        speed,
+        elevation,
+        azimuth,
+        _speed_ratio_squared(air, ratio_of),
+        beta,
+        tau,
+        _initial_angular_momentum(speed, elevation, radius_m),
+    )
+
+
+def surface_velocity(
+    latitude_rad, *, rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S, radius_m=earth.RADIUS_M
+):
+    """Eq 6.16: omega x r0 (m/s), the launch site's velocity, a (3, ...) vector due east of
+    magnitude omega r0 cos(latitude): 451.8 m/s at Barbados."""
+    latitude = _check_latitude(latitude_rad)
+    up, _, _ = launch_axes(latitude, 0.0 * latitude, 0.0 * latitude)
+    return np.array(_surface(up, rotation_rate_rad_s, radius_m))
+
+
+def relative_velocity(speed_m_s, elevation_rad, bearing_rad, latitude_rad):
+    """Vrel (m/s), the muzzle velocity relative to the ground: ``speed_m_s`` at ``elevation_rad``
+    above the horizon along ``bearing_rad`` from true north (Fig 5.1)."""
+    speed, elevation, bearing, latitude = _check_launch(
+        speed_m_s, elevation_rad, bearing_rad, latitude_rad
+    )
+    up, downrange, _ = launch_frame(latitude, 0.0, bearing)
+    return speed * (np.cos(elevation) * downrange + np.sin(elevation) * up)
+
+
+def misalignment_angle(relative_m_s, inertial_m_s):
+    """Ch. 5 B: mu (rad), the angle between the drag line (Vrel) and the inertial velocity V."""
+    return _misalignment(_components(relative_m_s), _components(inertial_m_s))
+
+
+def speed_ratio_squared(relative_m_s, inertial_m_s):
+    """(Vrel/V)^2 of eqs 5.2-5.3, exactly, from the two vectors."""
+    return _speed_ratio_squared(_components(relative_m_s), _components(inertial_m_s))
+
+
+def speed_ratio_squared_eq_5_3(
+    inertial_m_s,
+    latitude_rad,
+    *,
+    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+    radius_m=earth.RADIUS_M,
+):
+    """Eq 5.3 as printed: 1 - 2 Vx omega r cos(LA)/V^2 + (omega r)^2 cos^2(LA)/V^2.
+
+    With Vx the EASTWARD component of the inertial V (not of Vrel) this is |V - omega x r|^2/V^2
+    exactly, not an expansion: omega x r is due east with magnitude omega r cos(LA)."""
+    latitude = _check_latitude(latitude_rad)
+    _, _, east = launch_frame(latitude, 0.0, 0.0)
+    v_squared = np.sum(inertial_m_s * inertial_m_s, axis=0)
+    surface = rotation_rate_rad_s * radius_m * np.cos(latitude)
+    eastward = np.sum(inertial_m_s * east, axis=0)
+    return 1 - 2 * eastward * surface / v_squared + surface**2 / v_squared
+
+
+def tangent_speed(
+    drag_area_m2,
+    surface_density_kg_m3,
+    mass_kg,
+    misalignment_rad,
+    relative_speed_m_s,
+    relative_elevation_rad,
+    decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
+):
+    """Eq 5.8: V_tangent = Cd A rho0 sin(mu) Vrel / (2 m k sin(phi_rel)) (m/s), the integral of
+    the cross-track drag (eq 5.5) along the straight climb a = Vrel sin(phi_rel) t (eq 5.7);
+    ``drag_area_m2`` is Cd A."""
+    return _tangent_speed(
+        np.asarray(drag_area_m2),
+        surface_density_kg_m3,
+        mass_kg,
+        misalignment_rad,
+        relative_speed_m_s,
+        relative_elevation_rad,
+        decay_constant_per_m,
+    )
+
+
+def tangent_direction(relative_m_s, inertial_m_s):
+    """Unit vector of V_tangent (eq 6.15): normal to V in the plane of Vrel and V, on the side
+    AWAY from Vrel, the side of the cross-track drag -Vrel (module docstring). Zero if mu = 0."""
+    return np.array(_tangent_direction(_components(relative_m_s), _components(inertial_m_s)))
+
+
+def elevation_azimuth(velocity_m_s, latitude_rad):
+    """Elevation above the local horizon and azimuth from true north (rad, in [0, 2 pi)) of a
+    (3, ...) inertial velocity at the launch point (longitude 0) on ``latitude_rad``."""
+    latitude = _check_latitude(latitude_rad)
+    up, _, east = launch_axes(latitude, 0.0 * latitude, 0.0 * latitude)
+    return _elevation_azimuth(_components(velocity_m_s), up, east)
+
+
+def initial_angular_momentum(speed_m_s, elevation_rad, radius_m=earth.RADIUS_M):
+    """Eq 6.13: L0 = |V| r0 cos(phi) (m^2/s), per unit mass."""
+    return _initial_angular_momentum(speed_m_s, elevation_rad, radius_m)
+
+
+@dataclass(frozen=True)
+class EciModel:
+    """The choices Chapters 5-6 leave open in launching the ECI MKS, named.
+
+    - ``include_tangent``: eq 6.15's V_tangent in the launch velocity.
+    - ``tangent_sine``: the sin(phi) of eq 5.8's straight climb: ``"gun"`` (phi_rel, the gun's
+      elevation, as printed) or ``"corrected"`` (the elevation of Vrel + omega x r0).
+    - ``beta_elevation``: eq 6.11's phi: ``"gun"`` or ``"launch"`` (of the launch velocity).
+    - ``tau_elevation``: eq 6.12's phi: ``"corrected"`` or ``"launch"``.
+    - ``speed_ratio``: (Vrel/V)^2 of eq 5.3 with V = ``"corrected"`` (Vrel + omega x r0) or
+      ``"launch"`` (the launch velocity, V_tangent included, against its air-relative part).
+    - ``decay``: ``"printed"`` (eq 6.14, L_inf = L0 exp(-beta cos mu)) or ``"consistent"``
+      (cos mu (Vrel/V)^2 in the decay as in the driving terms, as eq 3.23 requires).
+    - ``beta_column``: what the appendices' Beta column holds under this model: ``"beta"``
+      (eq 6.11) or ``"beta_cos_mu"`` (eq 6.14's exponent, beta cos mu).
+    """
+
+    name: str
+    include_tangent: bool
+    tangent_sine: str
+    beta_elevation: str
+    tau_elevation: str
+    speed_ratio: str
+    decay: str
+    beta_column: str = "beta"
+
+    def __post_init__(self):
+        for name, choices in (
+            ("tangent_sine", ("gun", "corrected")),
+            ("beta_elevation", ("gun", "launch")),
+            ("tau_elevation", ("corrected", "launch")),
+            ("speed_ratio", ("corrected", "launch")),
+            ("decay", ("printed", "consistent")),
+            ("beta_column", ("beta", "beta_cos_mu")),
+        ):
+            check_choice(getattr(self, name), name, choices)
+
+    @property
+    def flags(self) -> tuple[bool, bool, bool, bool, bool]:
+        """The choices as :func:`corrected_launch`'s flags, in its order."""
+        return (
+            self.include_tangent,
+            self.tangent_sine == "corrected",
+            self.beta_elevation == "launch",
+            self.tau_elevation == "launch",
+            self.speed_ratio == "launch",
+        )
+
+
+#: The project's model: eqs 5.8 and 6.11-6.15 as printed, except the decay (eq 3.23).
+CONSISTENT = EciModel(
+    "consistent",
+    include_tangent=True,
+    tangent_sine="gun",
+    beta_elevation="launch",
+    tau_elevation="launch",
+    speed_ratio="corrected",
+    decay="consistent",
+)
+#: The dissertation's own pipeline, recovered from Appendix E's Error column (:mod:`.harp`).
+DISSERTATION = EciModel(
+    "dissertation",
+    include_tangent=True,
+    tangent_sine="corrected",
+    beta_elevation="gun",
+    tau_elevation="corrected",
+    speed_ratio="launch",
+    decay="consistent",
+    beta_column="beta_cos_mu",
+)
+#: What Appendices D and E's corrected columns describe: no V_tangent, eq 6.14 as printed.
+PRINTED_COLUMNS = EciModel(
+    "printed_columns",
+    include_tangent=False,
+    tangent_sine="gun",
+    beta_elevation="launch",
+    tau_elevation="launch",
+    speed_ratio="corrected",
+    decay="printed",
+)
+MODELS = {model.name: model for model in (DISSERTATION, CONSISTENT, PRINTED_COLUMNS)}
+
+
+def get_model(model: str | EciModel) -> EciModel:
+    """``model`` itself, or the named one of :data:`MODELS`; else ValueError naming it."""
+    if isinstance(model, EciModel):
+        return model
+    return MODELS[check_choice(model, "model", MODELS)]
+
+
+@dataclass(frozen=True)
+class LaunchCorrection:
+    """Chapter 5's corrections of one or many launches (arrays broadcast together)."""
+
+    model: EciModel
+    relative_m_s: np.ndarray  # Vrel, (3, ...)
+    surface_m_s: np.ndarray  # omega x r0, (3, ...)
+    misalignment_rad: np.ndarray  # mu between Vrel and Vrel + omega x r0
+    corrected_speed_m_s: np.ndarray  # |Vrel + omega x r0|, Appendices D/E's corrected columns
+    corrected_elevation_rad: np.ndarray
+    corrected_azimuth_rad: np.ndarray
+    tangent_speed_m_s: np.ndarray  # eq 5.8
+    velocity_m_s: np.ndarray  # the launch velocity: eq 6.15, with or without V_t
+    speed_m_s: np.ndarray
+    elevation_rad: np.ndarray
+    azimuth_rad: np.ndarray
+    speed_ratio_squared: np.ndarray  # (Vrel/V)^2, eq 5.3
+    beta: np.ndarray  # eq 6.11
+    tau: np.ndarray  # eq 6.12
+    initial_angular_momentum_m2_s: np.ndarray  # eq 6.13
+
+    @property
+    def drive_scale(self) -> np.ndarray:
+        """cos(mu) (Vrel/V)^2, the factor on beta in eqs 6.6-6.10."""
+        return np.cos(self.misalignment_rad) * self.speed_ratio_squared
+
+    @property
+    def decay_scale(self) -> np.ndarray:
+        """The factor on beta in the decay of the angular momentum (eq 6.14)."""
+        consistent = self.model.decay == "consistent"
+        return np.cos(self.misalignment_rad) * (self.speed_ratio_squared if consistent else 1.0)
+
+    @property
+    def beta_column(self) -> np.ndarray:
+        """The appendices' Beta column as ``model.beta_column`` reads it."""
+        cosine = np.cos(self.misalignment_rad) if self.model.beta_column == "beta_cos_mu" else 1.0
+        return self.beta * cosine
+
+    @property
+    def asymptotic_angular_momentum_m2_s(self) -> np.ndarray:
+        """L_inf = L0 exp(-beta x decay scale) (eq 6.14 or its consistent form)."""
+        return self.initial_angular_momentum_m2_s * np.exp(-self.beta * self.decay_scale)
+
+
+def launch_correction(
+    speed_m_s,
+    elevation_rad,
+    bearing_rad,
+    latitude_rad,
+    *,
+    drag_area_m2,
+    mass_kg,
+    surface_density_kg_m3,
+    decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
+    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+    radius_m=earth.RADIUS_M,
+    model: str | EciModel = CONSISTENT,
+) -> LaunchCorrection:
+    """Eqs 5.1-5.8 and 6.11-6.16 for guns firing at ``speed_m_s`` (relative to the ground),
+    ``elevation_rad``, ``bearing_rad`` from ``latitude_rad``; ``drag_area_m2`` is Cd0 A and
+    ``model`` (an :class:`EciModel` or its name) settles what the text leaves open.
+
+    mu refers to V = Vrel + omega x r0, as in Figs 5.2-5.3 and the appendices' mu column."""
+    model = get_model(model)
+    mass = check_range(
+        finite_array(mass_kg, "mass_kg"), "mass_kg", low=0.0, low_inclusive=False, unit="kg"
+    )
+    drag_area = check_range(
+        finite_array(drag_area_m2, "drag_area_m2"), "drag_area_m2", low=0.0, unit="m^2"
+    )
+    density = check_range(
+        finite_array(surface_density_kg_m3, "surface_density_kg_m3"),
+        "surface_density_kg_m3",
+        low=0.0,
+        unit="kg/m^3",
+    )
+    speed, elevation, bearing, latitude, mass, drag_area, density = np.broadcast_arrays(
+        *_check_launch(speed_m_s, elevation_rad, bearing_rad, latitude_rad),
+        mass,
+        drag_area,
+        density,
+    )
+    (
+        relative,
+        surface,
+        mu,
+        corrected_speed,
+        corrected_elevation,
+        corrected_azimuth,
+        tangent,
+        velocity,
+        launch_speed,
+        launch_elevation,
+        launch_azimuth,
+        ratio,
+        beta,
+        tau,
+        momentum,
+    ) = corrected_launch(
+        speed,
+        elevation,
+        bearing,
+        latitude,
+        drag_area,
+        mass,
+        density,
+        decay_constant_per_m,
+        rotation_rate_rad_s,
+        radius_m,
+        *model.flags,
+    )
+    return LaunchCorrection(
+        model,
+        np.array(relative),
+        np.array(surface),
+        mu,
+        corrected_speed,
+        corrected_elevation,
+        corrected_azimuth,
+        tangent,
+        np.array(velocity),
+        launch_speed,
+        launch_elevation,
+        launch_azimuth,
+        ratio,
+        beta,
+        tau,
+        momentum,
+    )
+
+
+def eci_solution(
+    speed_m_s,
+    elevation_rad,
+    bearing_rad,
+    latitude_rad,
+    *,
+    drag_area_m2,
+    mass_kg,
+    surface_density_kg_m3,
+    decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
+    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+    radius_m=earth.RADIUS_M,
+    model: str | EciModel = CONSISTENT,
+    n_terms: int = 3,
+    warn: bool = True,
+) -> mks.ModifiedKeplerSolution:
+    """The ECI Modified Kepler solution (eqs 6.6-6.15): the MKS launched at the launch speed
+    and elevation of :func:`launch_correction` with its beta and tau, drive_scale = cos(mu)
+    (Vrel/V)^2 (eqs 6.9-6.10) and the decay of ``model``."""
+    return solution_for(
+        launch_correction(
+            speed_m_s,
+            elevation_rad,
+            bearing_rad,
+            latitude_rad,
+            drag_area_m2=drag_area_m2,
+            mass_kg=mass_kg,
+            surface_density_kg_m3=surface_density_kg_m3,
+            decay_constant_per_m=decay_constant_per_m,
+            rotation_rate_rad_s=rotation_rate_rad_s,
+            radius_m=radius_m,
+            model=model,
+        ),
+        n_terms=n_terms,
+        radius_m=radius_m,
+        warn=warn,
+    )
+
+
+def correction_for_launch(
+    launch: Launch | Launches, model: str | EciModel = CONSISTENT
+) -> LaunchCorrection:
+    """:func:`launch_correction` of a :class:`~harp_analysis.models.launch.Launch` (or of
+    :class:`~harp_analysis.models.launch.Launches` sharing one Earth rotation, each launch a
+    column): its speed, elevation, bearing and latitude, Cd0 A at the launch Mach, its mass, its
+    air's density at the gun and its Earth rotation. The ECI MKS is drag-only: a wind is ignored
+    with a warning; it launches from the Earth's surface (r0 = R)."""
+    if not isinstance(launch, Launch | Launches):
+        raise TypeError(f"launch must be a Launch or Launches; got {type(launch).__name__}")
+    launch.require_zero("ECI MKS", "site_altitude_m", reason="it launches from r0 = R")
+    launch.warn_ignored(
+        "ECI MKS", "cross_wind_m_s", "head_wind_m_s", reason="the MKS has no wind (Chapter 3)"
+    )
+    rotation = (
+        launch.rotation_rate_rad_s
+        if isinstance(launch, Launch)
+        else launch.shared("rotation_rate_rad_s")
+    )
+    projectile = launch.projectile
+    return launch_correction(
+        launch.speed_m_s,
+        launch.elevation_rad,
+        launch.bearing_rad,
+        launch.latitude_rad,
+        drag_area_m2=launch.launch_drag_coefficient * projectile.reference_area_m2,
+        mass_kg=projectile.mass_kg,
+        surface_density_kg_m3=mks.gun_density_kg_m3(launch),
+        rotation_rate_rad_s=rotation,
+        model=model,
+    )
+
+
+def solution_for_launch(
+    launch: Launch | Launches,
+    model: str | EciModel = CONSISTENT,
+    *,
+    n_terms: int = 3,
+    warn: bool = True,
+) -> mks.ModifiedKeplerSolution:
+    """The ECI MKS of a :class:`~harp_analysis.models.launch.Launch`, or of every launch of a
+    :class:`~harp_analysis.models.launch.Launches` at once (:func:`correction_for_launch`)."""
+    return solution_for(correction_for_launch(launch, model), n_terms=n_terms, warn=warn)
+
+
+def solution_for(
+    launch: LaunchCorrection, *, n_terms: int = 3, radius_m=earth.RADIUS_M, warn: bool = True
+) -> mks.ModifiedKeplerSolution:
+    """The ECI MKS of an already corrected launch (:func:`eci_solution` without recomputing)."""
+    return mks.ModifiedKeplerSolution(
+        launch.speed_m_s,
+        launch.elevation_rad,
+        launch.beta,
+        launch.tau,
+        n_terms=n_terms,
+        radius_m=radius_m,
+        drive_scale=launch.drive_scale,
+        decay_scale=launch.decay_scale,
+        warn=warn,
+    )
+
+
+def site_surface_speed_km_s(site: str) -> float:
+    """Speed of the Earth's surface at ``site`` (km/s), eq 6.16's 0.4518 km/s at Barbados."""
+    return float(np.linalg.norm(surface_velocity(get_site(site).latitude_rad))) / 1e3
+
+
+def inertial_positions(
+    solution: mks.ModifiedKeplerSolution, launch: LaunchCorrection, latitude_rad: float, theta_rad
+) -> np.ndarray:
+    """Positions (n, 3) of a single-launch ECI MKS at angular ranges ``theta_rad``: r(theta)
+    in the plane of the launch point's radius and the corrected velocity's horizontal part,
+    in the inertial frame of :func:`trajectory.launch_frame` at longitude 0 and time zero."""
+    up = np.ravel(launch_frame(latitude_rad, 0.0, 0.0)[0])
+    velocity = np.ravel(launch.velocity_m_s)
+    along = velocity - (velocity @ up) * up
+    along /= np.linalg.norm(along)
+    theta = np.asarray(theta_rad, dtype=float)
+    radius = np.ravel(solution.radius(theta))
+    return radius[:, None] * (np.cos(theta)[:, None] * up + np.sin(theta)[:, None] * along)

@@ -1,0 +1,211 @@
+"""Compiled kernels: numba's ``njit`` with an on-disk cache, and the helpers that let one source
+serve numpy and compiled code.
+
+The engines' inner loops (the 3DOF's right-hand side and integrator, the MKS's per-launch
+constants) run as machine code compiled by numba. Compilation happens once per version of the
+package: the machine code is cached on disk in a folder named by a digest of the sources the
+kernel's module reaches (numba itself would only notice a change in the file of the compiled
+function, not in a formula it calls from another module). Each engine with kernels has a
+``warm_up()`` that compiles them ahead of use; ``make`` calls it whenever the sources change,
+which keeps compilation out of the notebooks' critical path. Processes that compile the same
+kernel at once (two notebooks opened after an upgrade) take turns under a file lock per kernel,
+the later one loading what the first saved: unguarded, each compiles, and each reads, extends
+and rewrites numba's index of the kernel's cache files, which may lose the other's entries.
+
+The physics is written once. A formula meant for both worlds is decorated :func:`formula`: it
+stays a plain Python function that numpy runs on arrays, and compiled code inlines the same
+source for numbers. It uses numpy's functions, which numba also compiles for numbers, and
+:func:`select` for a choice between two values (``np.where`` on arrays; numba's own
+``np.where`` would return a 0-d array for numbers, an allocation per call). ``bisect_right``
+compiles too (as numpy's ``searchsorted``).
+"""
+
+from __future__ import annotations
+
+import ast
+import hashlib
+import os
+import sys
+import threading
+from bisect import bisect_right
+from collections.abc import Callable
+from functools import cache
+from pathlib import Path
+from typing import Any, TypeVar
+
+import numba
+import numpy as np
+from filelock import FileLock
+from numba import types
+from numba.core.compiler_lock import global_compiler_lock
+from numba.extending import overload, register_jitable
+
+__all__ = ["jit", "formula", "select", "vector", "cache_folder"]
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+_PACKAGE = Path(__file__).parents[1]  # the package's root folder
+_PACKAGE_NAME = __name__.partition(".")[0]
+
+
+def _imported(source: Path) -> frozenset[Path]:
+    """The package's source files that ``source`` imports (``from . import x``, ``from .x
+    import y``, ``import harp_analysis.x``), constants included: numba bakes them in."""
+    return _imported_as_of(source, *_stamp(source))
+
+
+def _stamp(source: Path) -> tuple[int, int]:
+    status = source.stat()
+    return status.st_mtime_ns, status.st_size
+
+
+@cache
+def _imported_as_of(source: Path, mtime_ns: int, size: int) -> frozenset[Path]:
+    """:func:`_imported` of ``source`` as it was at that modification time and size (a file
+    is parsed once per version, not once per compiled function). A relative import is resolved
+    against the folder of ``source`` itself (``from ..models import drag`` in a subpackage), an
+    absolute one against the package's root: either way every module a kernel reaches counts."""
+    found: set[Path] = set()
+    for node in ast.walk(ast.parse(source.read_text())):
+        if isinstance(node, ast.ImportFrom):
+            module = node.module or ""
+            if node.level:
+                base = source.parent
+                for _ in range(node.level - 1):
+                    base = base.parent
+            elif module == _PACKAGE_NAME or module.startswith(f"{_PACKAGE_NAME}."):
+                base, module = _PACKAGE, module.removeprefix(_PACKAGE_NAME).lstrip(".")
+            else:  # another package's
+                continue
+            found.update(_module_files(base, module, [alias.name for alias in node.names]))
+        elif isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name.startswith(f"{_PACKAGE_NAME}."):
+                    found.update(_module_files(_PACKAGE, alias.name.partition(".")[2], []))
+    return frozenset(found)
+
+
+def _module_files(base: Path, module: str, names: list[str]) -> list[Path]:
+    """The source files of ``module`` (dotted, below ``base``; empty: ``base`` itself) and of
+    those of ``names`` that are its submodules: a module's file or a subpackage's
+    ``__init__.py``."""
+    folder = base.joinpath(*module.split(".")) if module else base
+    candidates = [folder.with_suffix(".py"), folder / "__init__.py"] if module else []
+    for name in names:
+        candidates += [folder / f"{name}.py", folder / name / "__init__.py"]
+    return [path for path in candidates if path.is_file()]
+
+
+def _sources(module_name: str) -> list[Path]:
+    """The package's source files that ``module_name`` reaches, import by import."""
+    seen: set[Path] = set()
+    pending = [Path(str(sys.modules[module_name].__file__))]
+    while pending:
+        source = pending.pop()
+        if source not in seen:
+            seen.add(source)
+            pending.extend(_imported(source))
+    return sorted(seen)
+
+
+def cache_folder(module_name: str) -> Path:
+    """Where the compiled kernels of ``module_name`` are kept: under ``NUMBA_CACHE_DIR`` if set,
+    else the user's cache folder, in a folder named by a digest of every source file of the
+    package that the module reaches, as they are now (an edit to any of them, or a reload after
+    one, compiles afresh)."""
+    sources = tuple(_sources(module_name))
+    digest = _digest(sources, tuple(_stamp(source) for source in sources))
+    root = os.environ.get("NUMBA_CACHE_DIR") or Path(
+        os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
+    )
+    return Path(root) / "harp-analysis" / digest
+
+
+@cache
+def _digest(sources: tuple[Path, ...], stamps: tuple) -> str:
+    """The digest of ``sources`` at these modification times and sizes (read once each)."""
+    digest = hashlib.sha256()
+    for source in sources:
+        digest.update(source.name.encode() + source.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+_CACHE_DIR_LOCK = threading.Lock()  # numba reads its global CACHE_DIR where caching starts
+
+
+def jit(function: F | None = None, *, inline: bool = False) -> Any:
+    """``function`` compiled in nopython mode and cached in :func:`cache_folder`, without
+    fast-math (IEEE results, as numpy's where the operations are the same). ``inline=True``
+    (as ``@jit(inline=True)``) inlines it into compiled callers: a call that passes arrays
+    otherwise costs reference counting, tens of nanoseconds in a right-hand side."""
+    if function is None:
+        return lambda function: jit(function, inline=inline)
+    config: Any = numba.config
+    folder = cache_folder(function.__module__)
+    with _CACHE_DIR_LOCK:
+        previous, config.CACHE_DIR = config.CACHE_DIR, str(folder)
+        try:
+            dispatcher: Any = numba.njit(cache=True, inline="always" if inline else "never")(
+                function
+            )
+        finally:
+            config.CACHE_DIR = previous
+    if config.DISABLE_JIT:  # NUMBA_DISABLE_JIT=1, for debugging: njit returned the function
+        return dispatcher
+    # numba compiles through this method at a first call, for a compiled caller and at warm-up
+    lock = folder / f"{function.__qualname__}-{function.__code__.co_firstlineno}.lock"
+    dispatcher.compile = _under_lock(dispatcher.compile, lock)
+    return dispatcher
+
+
+def _under_lock(compile: Callable, path: Path) -> Callable:
+    """``compile`` (a dispatcher's: load from the disk cache, else compile and save) run under
+    the file lock ``path``, so another process waits and then loads what this one saved. One
+    lock per kernel, taken caller before callee, cannot deadlock (calls form no cycle, and a
+    recursive kernel re-enters its own lock); numba's own lock is taken first, as it is in
+    ``compile``, so that threads take the two in one order."""
+    lock = FileLock(path)
+
+    def compile_under_lock(signature):
+        with global_compiler_lock:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            with lock:
+                return compile(signature)
+
+    return compile_under_lock
+
+
+def formula(function: F) -> F:
+    """``function`` unchanged for Python and numpy, and callable from compiled code."""
+    return register_jitable(function)
+
+
+@formula
+def vector(x, y, z):
+    """A 3-vector written per component in compiled code: ``vector(ax - bx, ay - by, az - bz)``
+    is numpy's ``a - b``; the operation counts of :mod:`harp_analysis.analyses.effort` count it
+    once, as they count numpy's (3, n) expression (its costliest component)."""
+    return x, y, z
+
+
+def select(condition, if_true, if_false):
+    """``if_true`` where ``condition`` holds, else ``if_false``: ``np.where`` on arrays, the
+    chosen one of two numbers on a plain bool and in compiled code (both are evaluated before
+    the call in every case: the formulas count both, as numpy computes both)."""
+    if isinstance(condition, bool):
+        return if_true if condition else if_false
+    return np.where(condition, if_true, if_false)
+
+
+@overload(bisect_right)
+def _bisect_right_compiled(table, value):
+    # numba has no bisect module; its searchsorted is the same search
+    return lambda table, value: np.searchsorted(table, value, side="right")
+
+
+@overload(select)
+def _select_compiled(condition, if_true, if_false):
+    if isinstance(condition, types.Boolean):
+        return lambda condition, if_true, if_false: if_true if condition else if_false
+    return lambda condition, if_true, if_false: np.where(condition, if_true, if_false)

@@ -1,0 +1,1 @@
+"""The figures, one module per family (every figure is drawn here)."""

@@ -1,0 +1,134 @@
+"""The fire-control figures (X.1, X.2): reporting on :mod:`.envelope`'s miss maps."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from matplotlib.lines import Line2D
+
+from ...engines import mks
+from ..plotting import FULL_WIDTH_IN, OKABE_ITO, new_figure
+
+__all__ = ["MISS_CLASSES", "draw_miss_map"]
+
+#: Miss classes (low, high in m, label, marker, shade): a marker and a shade of grey each
+#: (darker, larger miss), so they read without colour; a decade each, metres to 100 km.
+MISS_CLASSES = (
+    (0.0, 10.0, "below 10 m", "o", "#F0F0F0"),
+    (10.0, 100.0, "10 to 100 m", "v", "#D4D4D4"),
+    (100.0, 1e3, "0.1 to 1 km", "p", "#B0B0B0"),
+    (1e3, 1e4, "1 to 10 km", "s", "#8C8C8C"),
+    (1e4, 1e5, "10 to 100 km", "^", "#4D4D4D"),
+    (1e5, np.inf, "100 km or more", "D", OKABE_ITO["black"]),
+)
+#: The firing elevation's contours (deg) drawn over each map.
+ELEVATION_STEP_DEG = 10.0
+_NONE: dict[str, Any] = dict(
+    marker="x", color=OKABE_ITO["grey"], linestyle="none", markersize=3.5, mew=0.7
+)
+
+
+def _elevation_contours(ax, rows: pd.DataFrame) -> None:
+    """Dotted, labelled contours of the root's firing elevation over the points it exists at."""
+    solved = rows[np.isfinite(rows.elevation_deg)]
+    if len(solved) < 3 or solved.downrange_m.nunique() < 2 or solved.altitude_m.nunique() < 2:
+        return
+    low, high = solved.elevation_deg.min(), solved.elevation_deg.max()
+    levels = (
+        np.arange(np.ceil(low / ELEVATION_STEP_DEG), np.floor(high / ELEVATION_STEP_DEG) + 1)
+        * ELEVATION_STEP_DEG
+    )
+    if not levels.size:
+        return
+    lines = ax.tricontour(
+        solved.downrange_m / 1e3,
+        solved.altitude_m / 1e3,
+        solved.elevation_deg,
+        levels=levels,
+        colors=OKABE_ITO["black"],
+        linestyles=":",
+        linewidths=0.8,
+    )
+    ax.clabel(lines, fmt=lambda value: f"{value:.0f}°", fontsize=6.5, inline_spacing=2)
+
+
+def draw_miss_map(maps: pd.DataFrame, bearings_deg, root: str, site: str):
+    """Figures X.1 and X.2: one panel per bearing of :func:`envelope.miss_map`'s rows for
+    ``root`` ("low" or "high"), each intercept point marked by the class of the 3DOF's miss at
+    the MKS solution, open where beta exceeds the MKS's validity, a cross where there is no
+    solution, the firing elevation's contours over the points; ``site`` names the gun."""
+    fig, axes = new_figure(
+        1,
+        len(bearings_deg),
+        figsize=(FULL_WIDTH_IN, 3.9),
+        sharex=True,
+        sharey=True,
+        layout="constrained",
+    )
+    for ax, bearing in zip(np.atleast_1d(axes), bearings_deg):
+        rows = maps[(maps.root == root) & (maps.map_bearing_deg == bearing)]
+        x, y = rows.downrange_m / 1e3, rows.altitude_m / 1e3
+        miss = rows.miss_3dof_m.to_numpy()
+        valid = (rows.beta <= mks.BETA_VALIDITY_LIMIT).to_numpy()
+        missing = ~np.isfinite(miss)
+        ax.plot(x[missing], y[missing], **_NONE)
+        for low, high, _, marker, shade in MISS_CLASSES:
+            inside = (miss >= low) & (miss < high)
+            for filled in (True, False):
+                chosen = inside & (valid == filled)
+                ax.plot(
+                    x[chosen],
+                    y[chosen],
+                    marker=marker,
+                    linestyle="none",
+                    markersize=5.5,
+                    color=shade,
+                    mec=OKABE_ITO["black"] if filled else shade,
+                    mew=0.6 if filled else 1.3,
+                    mfc=shade if filled else "white",
+                )
+        _elevation_contours(ax, rows)
+        ax.set_title(f"bearing {bearing:03.0f}°T", fontsize=9)
+        ax.set_xlabel("downrange (km)")
+    np.atleast_1d(axes)[0].set_ylabel("intercept altitude (km)")
+    handles = [
+        Line2D(
+            [],
+            [],
+            marker=m,
+            color=s,
+            mec=OKABE_ITO["black"],
+            mew=0.6,
+            linestyle="none",
+            markersize=5.5,
+            label=f"3DOF miss {label}",
+        )  # fmt: skip
+        for _, _, label, m, s in MISS_CLASSES
+    ]
+    handles += [
+        Line2D(
+            [],
+            [],
+            marker="o",
+            color=MISS_CLASSES[1][4],
+            mfc="white",
+            mew=1.3,
+            linestyle="none",
+            markersize=5.5,
+            label=r"open: $\beta > 0.25$ (beyond the MKS's validity)",
+        ),  # fmt: skip
+        Line2D([], [], label=f"no {root}-angle firing solution", **_NONE),
+        Line2D(
+            [],
+            [],
+            color=OKABE_ITO["black"],
+            linestyle=":",
+            linewidth=0.8,
+            label=f"firing elevation (every {ELEVATION_STEP_DEG:g}°)",
+        ),
+    ]
+    fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=7.5)
+    fig.suptitle(f"{root}-angle ECI MKS solution flown by the 3DOF:\n{site}", fontsize=9)
+    return fig
