@@ -207,3 +207,29 @@ def test_relative_imports_resolve_from_the_importing_file_s_own_folder(tmp_path)
         tmp_path / "models" / "__init__.py",
         tmp_path / "engines" / "helper.py",
     }
+
+
+def test_editing_a_dependency_in_another_folder_changes_the_kernel_s_cache_folder(
+    tmp_path, monkeypatch
+):
+    """The whole chain: a kernel's module in engines/ imports a formula from models/; editing
+    that formula must give the kernel a new cache folder, or stale machine code would run."""
+    import importlib
+
+    package = tmp_path / "layered"
+    (package / "models").mkdir(parents=True)
+    (package / "engines").mkdir()
+    for init in ("__init__.py", "models/__init__.py", "engines/__init__.py"):
+        (package / init).write_text("")
+    formula = package / "models" / "drag.py"
+    formula.write_text("def cd(mach):\n    return 0.3\n")
+    (package / "engines" / "fly.py").write_text("from ..models.drag import cd\n")
+    (package / "engines" / "unrelated.py").write_text("")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    importlib.import_module("layered.engines.fly")
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "cache"))
+    before = compiled.cache_folder("layered.engines.fly")
+    (package / "engines" / "unrelated.py").write_text("X = 1\n")  # not reached by the kernel
+    assert compiled.cache_folder("layered.engines.fly") == before
+    formula.write_text("def cd(mach):\n    return 0.31\n")
+    assert compiled.cache_folder("layered.engines.fly") != before
