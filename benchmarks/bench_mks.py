@@ -229,7 +229,7 @@ def main(smoke: bool = False) -> None:
     )
     if not smoke:
         cold = cold_start_s(
-            "import time; t = time.perf_counter(); from harp_analysis import mks; "
+            "import time; t = time.perf_counter(); from harp_analysis.engines import mks; "
             "mks.warm_up(); print(time.perf_counter() - t)"
         )
         print(f"cold start (import, compile into an empty cache, warm-up): {cold:.1f} s")

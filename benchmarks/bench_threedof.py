@@ -335,7 +335,7 @@ def outcome(row) -> dict:
 
 
 COLD_START = (  # the compilation of one pair of atmosphere and drag law (make compiles all ten)
-    "import time; t = time.perf_counter(); from harp_analysis import threedof; "
+    "import time; t = time.perf_counter(); from harp_analysis.engines import threedof; "
     "from harp_analysis.models.launch import baseline_chapter_4; "
     "threedof.fly_3dof(baseline_chapter_4(45.0)); print(time.perf_counter() - t)"
 )

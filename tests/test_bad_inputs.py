@@ -71,7 +71,7 @@ from harp_analysis.analyses import (
     scenarios,
 )
 from harp_analysis.analyses.fire_control import firing
-from harp_analysis.analyses.harp import apogees, appendices, confidence as harp_confidence, rounds
+from harp_analysis.analyses.harp import apogees, appendices, confidence, rounds
 from harp_analysis.engines import eci, mks, mks_improved, mlt, sixdof, threedof
 from harp_analysis.foundation import sweeps
 from harp_analysis.models import atmosphere, projectiles
@@ -90,7 +90,7 @@ HP50 = HP_CHAPTER_2.but(cross_wind_m_s=0.0)
 GUN, TARGET = firing.barbados_case()
 # compiled before any probe runs: an alarm must never interrupt a compiler
 from harp_analysis.analyses.fire_control import solver
-for warm in (mks, mks_improved, firing_solver, sixdof, mlt):
+for warm in (mks, mks_improved, solver, sixdof, mlt):
     warm.warm_up()
 threedof.fly_3dof(B45), threedof.fly_3dof(HP_CHAPTER_2), threedof.fly_3dof(GUN)
 firing.firing_solutions(GUN, TARGET)
@@ -291,16 +291,16 @@ PROBES: dict[str, tuple[str, Err | Warned | Ok]] = {
     "splash error list": ("rounds.splash_error([181])", Err("round_number")),
     "column agreement site": ("apogees.column_agreement('mars')", Err("unknown site 'mars'")),
     # --- HARP with confidence -------------------------------------------------------------
-    "bootstrap resamples huge": ("harp_confidence.bootstrap_interval([1.0, 2.0, 4.0], resamples=10**12)", Err("resamples must lie in")),
-    "bootstrap resamples few": ("harp_confidence.bootstrap_interval([1.0, 2.0, 4.0], resamples=3)", Err("resamples must lie in")),
-    "bootstrap confidence string": ("harp_confidence.bootstrap_interval([1.0, 2.0, 4.0], confidence='0.9')", Err("confidence must be a real number")),
-    "bootstrap sample strings": ("harp_confidence.bootstrap_interval(['1', '2', '4'])", Err("sample")),
-    "bootstrap sample short": ("harp_confidence.bootstrap_interval([1.0, 2.0])", Err("sample must be 1-D with at least 3")),
-    "bootstrap statistic": ("harp_confidence.bootstrap_interval([1.0, 2.0, 4.0], 'median')", Err("statistic")),
-    "residual intervals site": ("harp_confidence.residual_intervals('mars')", Err("unknown site 'mars'")),
-    "quantisation step negative": ("harp_confidence.uniform_quantisation_std(-1.0)", Err("step must lie in")),
-    "scatter budget std negative": ("harp_confidence.scatter_budget('yuma', speed_std_m_s=-1.0)", Err("speed_std_m_s")),
-    "surface densities": ("harp_confidence.surface_densities_kg_m3('moon')", Err("densities")),
+    "bootstrap resamples huge": ("confidence.bootstrap_interval([1.0, 2.0, 4.0], resamples=10**12)", Err("resamples must lie in")),
+    "bootstrap resamples few": ("confidence.bootstrap_interval([1.0, 2.0, 4.0], resamples=3)", Err("resamples must lie in")),
+    "bootstrap confidence string": ("confidence.bootstrap_interval([1.0, 2.0, 4.0], confidence='0.9')", Err("confidence must be a real number")),
+    "bootstrap sample strings": ("confidence.bootstrap_interval(['1', '2', '4'])", Err("sample")),
+    "bootstrap sample short": ("confidence.bootstrap_interval([1.0, 2.0])", Err("sample must be 1-D with at least 3")),
+    "bootstrap statistic": ("confidence.bootstrap_interval([1.0, 2.0, 4.0], 'median')", Err("statistic")),
+    "residual intervals site": ("confidence.residual_intervals('mars')", Err("unknown site 'mars'")),
+    "quantisation step negative": ("confidence.uniform_quantisation_std(-1.0)", Err("step must lie in")),
+    "scatter budget std negative": ("confidence.scatter_budget('yuma', speed_std_m_s=-1.0)", Err("speed_std_m_s")),
+    "surface densities": ("confidence.surface_densities_kg_m3('moon')", Err("densities")),
     # --- Chapter 4's comparisons, the improved MKS's judging, the MLT's validation --------
     "comparison projectile": ("comparisons.chapter_4_launch('XX', 45.0)", Err("unknown projectile 'XX'")),
     "comparison elevation": ("comparisons.chapter_4_launch('baseline', 95.0)", Err("elevation_deg must lie in")),

@@ -23,27 +23,27 @@ PACKAGE = Path(harp_analysis.__file__).parent
 
 #: Plain caches whose results cannot be edited: module.function -> what it returns.
 IMMUTABLE_RESULTS = {
-    "compiled._imported_as_of": "a frozenset of paths",
-    "compiled._digest": "a string",
-    "explorer._typical_martlet_mass_kg": "a float",
-    "fire_control.raid_against_3dof_intercept": "a frozen RaidComparison of ints and floats",
-    "apogees.fit_drag_area_to_errors": "a tuple of three floats",
-    "apogees._drag_area_m2": "a float",
-    "mks_improvement.calibration": "a frozen Calibration of one float",
-    "registry.load_registry": "a tuple of frozen RegistryEntry of strings and a bool",
-    "taylor_maccoll.baseline_fit": "a frozen DragFit of four floats",
-    "threedof._kernels": "a tuple of compiled functions",
+    "foundation.compiled._imported_as_of": "a frozenset of paths",
+    "foundation.compiled._digest": "a string",
+    "reporting.explorer._typical_martlet_mass_kg": "a float",
+    "analyses.fire_control.firing.raid_against_3dof_intercept": "a frozen RaidComparison",
+    "analyses.harp.apogees.fit_drag_area_to_errors": "a tuple of three floats",
+    "analyses.harp.apogees._drag_area_m2": "a float",
+    "analyses.mks_improvement.calibration": "a frozen Calibration of one float",
+    "reporting.registry.load_registry": "a tuple of frozen RegistryEntry of strings and a bool",
+    "models.taylor_maccoll.baseline_fit": "a frozen DragFit of four floats",
+    "engines.threedof._kernels": "a tuple of compiled functions",
 }
 
 #: Plain caches in other engineers' modules that hand out editable objects (issue 25, item 4:
 #: reported for them to convert); each leaves this list when it becomes cached_copies or is
 #: shown immutable.
 NOT_YET_COPIES = {
-    "atmosphere._standard_table": "a tuple of numpy arrays (private, read by the kernels)",
-    "mks._gauss_legendre": "a tuple of numpy arrays (nodes and weights)",
-    "plotting._subset_font": "bytes and a dict of glyph indices",
-    "sixdof._model": "a RigidBodyModel shared by every 6DOF and MLT flight of a projectile",
-    "threedof._shared": "a tuple holding numpy arrays (the atmosphere's table, breakpoints)",
+    "models.atmosphere._standard_table": "a tuple of numpy arrays (private, read by the kernels)",
+    "engines.mks._gauss_legendre": "a tuple of numpy arrays (nodes and weights)",
+    "reporting.plotting._subset_font": "bytes and a dict of glyph indices",
+    "engines.sixdof._model": "a RigidBodyModel shared by every 6DOF and MLT flight of a projectile",
+    "engines.threedof._shared": "numpy arrays (the atmosphere's table, breakpoints)",
 }
 
 _CACHES = {"cache", "lru_cache", "cached_copies"}
@@ -58,15 +58,17 @@ def _decorator_name(node: ast.expr) -> str | None:
 
 
 def package_caches() -> dict[str, str]:
-    """Every cached function of the package, module.function -> its decorator's name."""
+    """Every cached function of the package, module.function -> its decorator's name (the
+    module dotted from the package, ``engines.mks``)."""
     found = {}
-    for source in sorted(PACKAGE.glob("*.py")):
+    for source in sorted(PACKAGE.rglob("*.py")):
+        module = ".".join(source.relative_to(PACKAGE).with_suffix("").parts)
         for node in ast.walk(ast.parse(source.read_text())):
             if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
                 for decorator in node.decorator_list:
                     name = _decorator_name(decorator)
                     if name in _CACHES:
-                        found[f"{source.stem}.{node.name}"] = name
+                        found[f"{module}.{node.name}"] = name
     return found
 
 

@@ -16,9 +16,12 @@ SCRIPT = """
 import importlib, pkgutil, sys
 import harp_analysis
 assert "site-packages" in harp_analysis.__file__, harp_analysis.__file__
-names = [m.name for m in pkgutil.iter_modules(harp_analysis.__path__) if not m.name.startswith("_")]
+names = [
+    m.name for m in pkgutil.walk_packages(harp_analysis.__path__, "harp_analysis.")
+    if not m.name.rpartition(".")[2].startswith("_")
+]
 for name in names:
-    importlib.import_module(f"harp_analysis.{name}")
+    importlib.import_module(name)
 from harp_analysis.analyses.harp import apogees, appendices
 from harp_analysis.foundation import paths
 assert len(appendices.load_barbados()) == 23 and len(appendices.load_yuma()) == 22
@@ -94,6 +97,7 @@ def test_wheel_installs_and_works_from_any_directory(tmp_path):
         env={"PATH": "/usr/bin:/bin", "MPLBACKEND": "Agg"},
     )
     assert result.returncode == 0, result.stderr[-3000:]
-    assert int(result.stdout.split()[0]) == len(
-        list(Path(harp_analysis.__file__).parent.glob("[!_]*.py"))
-    )
+    package = Path(harp_analysis.__file__).parent
+    every_module = [p for p in package.rglob("*.py") if not p.name.startswith("_")]
+    subpackages = [p for p in package.rglob("__init__.py") if p.parent != package]
+    assert int(result.stdout.split()[0]) == len(every_module) + len(subpackages)
