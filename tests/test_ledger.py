@@ -7,7 +7,7 @@ from difflib import SequenceMatcher
 import pytest
 
 from harp_analysis.analyses import comparisons, effort, mks_improvement, rotating
-from harp_analysis.analyses.claims import extra as claims_extra
+from harp_analysis.analyses.claims import chapter4
 from harp_analysis.analyses.harp import apogees, rounds
 from harp_analysis.foundation import paths
 from harp_analysis.reporting import ledger, registry
@@ -337,7 +337,7 @@ _TYPED += [
     (
         "ch4.assumption_3.flat_fire",
         "errs by 0.26 % (0.26 km at 102 km)",
-        lambda: _off_design_text(claims_extra.off_design_error()),
+        lambda: _off_design_text(chapter4.off_design_error()),
     ),
 ]
 
