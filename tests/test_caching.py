@@ -42,7 +42,7 @@ NOT_YET_COPIES = {
     "atmosphere._standard_table": "a tuple of numpy arrays (private, read by the kernels)",
     "mks._gauss_legendre": "a tuple of numpy arrays (nodes and weights)",
     "plotting._subset_font": "bytes and a dict of glyph indices",
-    "sixdof._model": "a RigidBodyModel shared by every 6DOF and MLT flight of a projectile",
+    "rigid_body._model": "a RigidBodyModel shared by every 6DOF and MLT flight of a projectile",
     "threedof._shared": "a tuple holding numpy arrays (the atmosphere's table, breakpoints)",
 }
 

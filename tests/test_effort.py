@@ -10,8 +10,8 @@ import pytest
 from scipy.integrate import DOP853
 
 from harp_analysis.analyses import effort
-from harp_analysis.engines import mks, mlt, sixdof
-from harp_analysis.models import atmosphere
+from harp_analysis.engines import mks, mlt
+from harp_analysis.models import atmosphere, rigid_body
 from harp_analysis.models.launch import HP_CHAPTER_2, Launch
 from harp_analysis.models.projectiles import BASELINE, HP
 
@@ -124,11 +124,11 @@ def test_complex_weight_multiplies_every_operation():
 
 def test_sixdof_coefficients_are_counted_for_every_table_column():
     """The counted interpolation returns all nine coefficients of Appendix B's table."""
-    model = sixdof.rigid_body_model(
+    model = rigid_body.rigid_body_model(
         HP, atmosphere.get_atmosphere("two_segment"), (0.0, 0.0, 0.0), "flat"
     )
     assert len(model.rows[0]) == len(model.slopes[0]) == 9
-    assert len(sixdof.RigidBodyModel.coefficients(model, 2.2)) == 9
+    assert len(rigid_body.RigidBodyModel.coefficients(model, 2.2)) == 9
 
 
 #: Chapter 2 A's HP launch (50 deg, 2022 m/s, 5 m/s cross wind, 10 rad/s) and MLT's options.

@@ -100,10 +100,11 @@ import numpy as np
 import pandas as pd
 
 from ..engines import mks, mlt, threedof
-from ..engines.sixdof import RigidBodyModel, simulate_6dof
+from ..engines.sixdof import simulate_6dof
 from ..foundation import earth
 from ..foundation.caching import cached_copies
 from ..models import atmosphere, drag
+from ..models.rigid_body import RigidBodyModel
 
 __all__ = [
     "COMPLEX_WEIGHT",
@@ -590,12 +591,13 @@ def _threedof_functions():
 
 def _sixdof_functions():
     from ..engines import sixdof
+    from ..models import rigid_body
 
     return (
-        sixdof._no_roll,
-        sixdof._aerodynamics,
-        sixdof.RigidBodyModel.air_altitude,
-        sixdof.RigidBodyModel.coefficients,
+        sixdof.right_hand_side,
+        rigid_body.aerodynamics,
+        RigidBodyModel.air_altitude,
+        RigidBodyModel.coefficients,
         atmosphere._two_segment_density,
         atmosphere._two_segment_speed_of_sound,
     )

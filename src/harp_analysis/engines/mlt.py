@@ -61,8 +61,8 @@ k = pi rho D^3 / 8 and (v_w, w_w) the wind resolved in N.
 Time: with V frozen, dt = D ds / V, so a segment of ``segment_length_m`` L lasts L / V. The
 Earth, gravity (central, GM/r^2, frozen per segment; ``gravity="uniform"`` keeps GM/R^2 along
 the launch vertical for a flat-Earth check), atmosphere (flat or spherical altitude), wind and
-M829 tables are the 6DOF's (:class:`harp_analysis.engines.sixdof.RigidBodyModel`), so differences
-between the two come from linear theory alone.
+M829 tables are the 6DOF's (:class:`harp_analysis.models.rigid_body.RigidBodyModel`, which both
+fly), so differences between the two come from linear theory alone.
 
 Cost: segments are sequential (each starts where the last ended), so there is nothing to
 vectorise across them, and a segment's internals are 2x2 complex closed forms on which numpy's
@@ -117,9 +117,7 @@ from ..foundation.validation import (
     positive_scalar,
 )
 from ..models.launch import HP_CHAPTER_2, Launch
-from ..models.trajectory import TruncatedFlightWarning, describe, output_times
-from . import kepler
-from .sixdof import (
+from ..models.rigid_body import (
     DENSITY_ALTITUDES,
     RigidBodyKernel,
     RigidBodyModel,
@@ -129,6 +127,8 @@ from .sixdof import (
     rigid_body_launch,
     trajectory_table,
 )
+from ..models.trajectory import TruncatedFlightWarning, describe, output_times
+from . import kepler
 
 __all__ = [
     "SEGMENT_LENGTH_M",
@@ -742,8 +742,8 @@ def simulate_mlt(
 
 
 def warm_up() -> None:
-    """Compile MLT's kernels (its table's rows, the 6DOF's) now, or load them from the on-disk
-    cache, not at first use."""
+    """Compile MLT's kernels (its table's rows, the rigid-body model's) now, or load them from the
+    on-disk cache, not at first use."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", TruncatedFlightWarning)  # a short flight compiles all
         simulate_mlt(HP_CHAPTER_2, max_time_s=1.0)
