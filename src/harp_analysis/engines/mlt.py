@@ -109,6 +109,7 @@ from scipy.optimize import brentq
 
 from ..foundation import earth
 from ..foundation.compiled import formula, jit
+from ..foundation.counting import Counted
 from ..foundation.validation import (
     ModelValidityWarning,
     check_choice,
@@ -116,6 +117,7 @@ from ..foundation.validation import (
     finite_scalar,
     positive_scalar,
 )
+from ..models.atmosphere import get_atmosphere
 from ..models.launch import HP_CHAPTER_2, Launch
 from ..models.rigid_body import (
     DENSITY_ALTITUDES,
@@ -148,6 +150,8 @@ __all__ = [
     "simulate_mlt",
     "linear_theory_derivatives",
     "simulate_linear_theory_limit",
+    "counted_functions",
+    "DIAGNOSTICS",
     "warm_up",
 ]
 
@@ -562,6 +566,43 @@ def _divergence(launch: Launch, time_s: float, state, problem: str | None) -> st
         + (f" ({problem})" if problem else "")
         + "; linear theory follows the arc length at a speed frozen per segment, which fails "
         "where the speed falls toward zero (a near-vertical apogee): the 6DOF flies it"
+    )
+
+
+#: The check of each segment's start against linear theory's assumptions (a growing epicyclic
+#: mode, an angle of attack beyond :data:`MAX_SMALL_ANGLE_DEG` where the air acts): a diagnostic,
+#: not the flight, so Fig 4.7 counts none of the calls made within it.
+DIAGNOSTICS = (_validity_problem,)
+
+
+def counted_functions(launch: Launch) -> tuple[Counted, ...]:
+    """Every function :func:`simulate_mlt`'s segment loop calls for ``launch``, each counted
+    once per call (:mod:`harp_analysis.analyses.effort`, Fig 4.7): the segment's coefficients
+    with the rotation, wind, gravity, air and coefficient table they read, the launch's
+    atmosphere's density and speed of sound, the closed-form propagation with its scalar and
+    epicyclic solutions (the latter and ``_phi`` in complex numbers), the two passes of eq L8,
+    a segment's duration and the impact and apogee checks."""
+    air = get_atmosphere(launch.atmosphere)
+    averaged = {"zip(a, b)": len(SegmentCoefficients._fields), "zip(x, y)": 3}
+    return (
+        Counted(segment_coefficients),
+        Counted(_rotation),
+        Counted(_apply),
+        Counted(_apply_transpose),
+        Counted(_gravity),
+        Counted(RigidBodyModel.air_altitude),
+        Counted(RigidBodyModel.coefficients),
+        Counted(air.density_kernel),
+        Counted(air.sound_kernel),
+        Counted(propagate_segment),
+        Counted(_scalar_solution),
+        Counted(_phi, complex_numbers=True),
+        Counted(_epicyclic_solution, complex_numbers=True),
+        Counted(_solve_segment, trips={"zip(rows0, rows1)": 3}),
+        Counted(_average, trips=averaged),
+        Counted(_Segment.duration_s),
+        Counted(_altitude),
+        Counted(_radial_velocity),
     )
 
 

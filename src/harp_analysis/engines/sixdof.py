@@ -99,7 +99,9 @@ from scipy.integrate import solve_ivp
 
 from ..foundation import earth
 from ..foundation.compiled import jit
+from ..foundation.counting import Counted
 from ..foundation.validation import check_range, finite_array, finite_scalar, positive_scalar
+from ..models.atmosphere import get_atmosphere
 from ..models.launch import HP_CHAPTER_2, Launch
 from ..models.projectiles import Projectile
 from ..models.rigid_body import (
@@ -120,6 +122,7 @@ __all__ = [
     "appendix_b_derivatives",
     "no_roll_derivatives",
     "right_hand_side",
+    "counted_functions",
     "simulate_6dof",
     "integrate_fixed_step",
     "warm_up",
@@ -173,6 +176,25 @@ def right_hand_side(t, state, kernel):
             mx / ix,
             (my - ix * p * r + iy * frame_roll * r) / iy,
             (mz + ix * p * q - iy * frame_roll * q) / iy,
+        )
+    )
+
+
+def counted_functions(launch: Launch) -> tuple[Counted, ...]:
+    """The functions one evaluation of the no-roll right-hand side runs for ``launch``, each
+    once: :func:`right_hand_side`, the rigid body's aerodynamics, where it reads the air, its
+    coefficient table, and the launch's atmosphere's density and speed of sound
+    (:mod:`harp_analysis.analyses.effort` counts their operations per evaluation, Fig 4.7)."""
+    air = get_atmosphere(launch.atmosphere)
+    return tuple(
+        Counted(function)
+        for function in (
+            right_hand_side,
+            aerodynamics,
+            RigidBodyModel.air_altitude,
+            RigidBodyModel.coefficients,
+            air.density_kernel,
+            air.sound_kernel,
         )
     )
 
