@@ -154,7 +154,7 @@ def _same(a, b) -> bool:
         (confidence._rounds, ("yuma",)),
         (identification.identification_table, ()),
         (ledger.load_claims, ()),
-        (effort._mlt_costs, ()),
+        (effort._mlt_costs, (HP_CHAPTER_2,)),
         (mks_improvement._flight, (HP_CHAPTER_2.but(cross_wind_m_s=0.0),)),
         (scenarios.fly_3dof, (HP_CHAPTER_2,)),
     ],
