@@ -26,7 +26,7 @@ IMMUTABLE_RESULTS = {
     "compiled._imported_as_of": "a frozenset of paths",
     "compiled._digest": "a string",
     "explorer._typical_martlet_mass_kg": "a float",
-    "fire_control.raid_against_3dof_intercept": "a frozen RaidComparison of ints and floats",
+    "firing.raid_against_3dof_intercept": "a frozen RaidComparison of ints and floats",
     "apogees.fit_drag_area_to_errors": "a tuple of three floats",
     "apogees._drag_area_m2": "a float",
     "mks_improvement.calibration": "a frozen Calibration of one float",
@@ -58,15 +58,18 @@ def _decorator_name(node: ast.expr) -> str | None:
 
 
 def package_caches() -> dict[str, str]:
-    """Every cached function of the package, module.function -> its decorator's name."""
+    """Every cached function of the package, in every folder, module.function -> its
+    decorator's name."""
     found = {}
-    for source in sorted(PACKAGE.glob("*.py")):
+    for source in sorted(PACKAGE.rglob("*.py")):
         for node in ast.walk(ast.parse(source.read_text())):
             if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
                 for decorator in node.decorator_list:
                     name = _decorator_name(decorator)
                     if name in _CACHES:
-                        found[f"{source.stem}.{node.name}"] = name
+                        key = f"{source.stem}.{node.name}"
+                        assert key not in found, f"two cached {key}: name them apart"
+                        found[key] = name
     return found
 
 

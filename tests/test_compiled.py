@@ -162,8 +162,9 @@ def test_numba_s_debugging_switch_runs_the_same_physics_in_python():
     from harp_analysis.engines import mks
 
     script = (
-        "import json; from harp_analysis import firing_solver, mks, mks_improved, mlt, sixdof, "
-        "threedof; from harp_analysis.models.launch import baseline_chapter_4 as b; "
+        "import json; from harp_analysis.analyses.fire_control import solver; "
+        "from harp_analysis.engines import catalogue, mks, mks_improved, mlt, sixdof, threedof; "
+        "from harp_analysis.models.launch import baseline_chapter_4 as b; "
         "print(json.dumps([mks.simulate_mks(b(45.0)).attrs['apogee_altitude_m'], "
         "float(threedof.fly_3dof([b(45.0)]).apogee_altitude_m[0])]))"
     )
