@@ -21,11 +21,11 @@ engine             wind   rotating  day's    full table  batch  rigid body  tole
 ``appendix_a``     no     yes [1]_  yes      no          no     no          ``dt_s``
 =================  =====  ========  =======  ==========  =====  ==========  ====================
 
-.. [1] with the macro's printed rotation terms (:mod:`.appendix_a`), which its listing runs off.
+.. [1] with the macro's printed rotation terms (:mod:`.appendix_a`); its listing runs with them off.
 
 What an engine does not model it says: a wind or a day's air left out is a
-:class:`~harp_analysis.foundation.validation.ModelValidityWarning` naming the field, a rotating
-Earth it cannot fly a ValueError naming ``rotation_rate_rad_s``. The MKS's many launches at once
+:class:`~harp_analysis.foundation.validation.ModelValidityWarning` naming the field; a rotating
+Earth it cannot fly is a ValueError naming ``rotation_rate_rad_s``. The MKS's many launches at once
 (:func:`.mks.for_launch`) are one closed-form solution, not flights; the improved MKS
 (:mod:`.mks_improved`) and the ECI MKS (:mod:`.eci`) have no trajectory table yet and are not
 listed.
