@@ -28,6 +28,7 @@ from bench_sixdof import yardstick
 from measure import agree, interleaved_best, smoke_requested
 
 from harp_analysis.engines import mlt, sixdof, threedof
+from harp_analysis.models import rigid_body
 from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2
 
 SEGMENTS_M = (2000.0, 1000.0, 500.0, 100.0)
@@ -45,7 +46,7 @@ SIXDOF_AGREEMENT_M = 0.01
 
 def halving(smoke: bool = False) -> None:
     mlt.warm_up()
-    model = sixdof.rigid_body_launch(HP_CHAPTER_2, "MLT", "flat")
+    model = rigid_body.rigid_body_launch(HP_CHAPTER_2, "MLT", "flat")
     reads = 100 if smoke else 10_000
 
     def air():  # the atmosphere as the segment loop reads it (numpy's formulas on a float)

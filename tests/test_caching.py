@@ -42,7 +42,7 @@ NOT_YET_COPIES = {
     "models.atmosphere._standard_table": "a tuple of numpy arrays (private, read by the kernels)",
     "engines.mks._gauss_legendre": "a tuple of numpy arrays (nodes and weights)",
     "reporting.plotting._subset_font": "bytes and a dict of glyph indices",
-    "engines.sixdof._model": "a RigidBodyModel shared by every 6DOF and MLT flight of a projectile",
+    "models.rigid_body._model": "a RigidBodyModel shared by every 6DOF and MLT flight of a projectile",
     "engines.threedof._shared": "numpy arrays (the atmosphere's table, breakpoints)",
 }
 

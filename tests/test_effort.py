@@ -2,16 +2,17 @@
 the counted MKS code is the MKS, and MLT is counted call by call as it runs."""
 
 import functools
-import sys
+import importlib
 from pathlib import Path
 
 import numpy as np
 import pytest
 from scipy.integrate import DOP853
 
+import harp_analysis
 from harp_analysis.analyses import effort
-from harp_analysis.engines import mks, mlt, sixdof
-from harp_analysis.models import atmosphere
+from harp_analysis.engines import mks, mlt
+from harp_analysis.models import atmosphere, rigid_body
 from harp_analysis.models.launch import HP_CHAPTER_2, Launch
 from harp_analysis.models.projectiles import BASELINE, HP
 
@@ -114,8 +115,10 @@ def test_nested_functions_count_per_call():
 
 def test_complex_weight_multiplies_every_operation():
     assert effort.count_flops(_sample, weight=effort.COMPLEX_WEIGHT) == 4 * 16
-    costs = effort._mlt_costs()
-    for function in (mlt._phi, mlt._epicyclic_solution):
+    costs = effort._mlt_costs(HP_CHAPTER_2)
+    in_complex = [c.function for c in mlt.counted_functions(HP_CHAPTER_2) if c.complex_numbers]
+    assert in_complex == [mlt._phi, mlt._epicyclic_solution]
+    for function in in_complex:
         assert costs[function.__code__] == effort.COMPLEX_WEIGHT * effort.count_flops(function)
     # _phi along its costlier path: |z| > 1 (2), the series' multiply-add per term, its last
     # three steps (6); the exponential branch (16 operations) is the cheaper one.
@@ -124,11 +127,11 @@ def test_complex_weight_multiplies_every_operation():
 
 def test_sixdof_coefficients_are_counted_for_every_table_column():
     """The counted interpolation returns all nine coefficients of Appendix B's table."""
-    model = sixdof.rigid_body_model(
+    model = rigid_body.rigid_body_model(
         HP, atmosphere.get_atmosphere("two_segment"), (0.0, 0.0, 0.0), "flat"
     )
     assert len(model.rows[0]) == len(model.slopes[0]) == 9
-    assert len(sixdof.RigidBodyModel.coefficients(model, 2.2)) == 9
+    assert len(rigid_body.RigidBodyModel.coefficients(model, 2.2)) == 9
 
 
 #: Chapter 2 A's HP launch (50 deg, 2022 m/s, 5 m/s cross wind, 10 rad/s) and MLT's options.
@@ -156,24 +159,28 @@ def test_mlt_counts_every_function_with_arithmetic():
     """Each function of the package that MLT's loop runs every segment is costed, runs inside
     a costed one (a generator, a nested function), is a diagnostic, or does no arithmetic."""
     calls, table = effort._mlt_run(_LAUNCH, **_FLIGHT)
-    costs = effort._mlt_costs()
+    costs = effort._mlt_costs(_LAUNCH)
     costed = {code.co_qualname for code in costs}
-    package = Path(effort.__file__).parent
+    diagnostics = {function.__code__ for function in mlt.DIAGNOSTICS}
+    package = Path(harp_analysis.__file__).parent
+    checked = 0
     for code, k in calls.items():
-        if code in costs or k < table.attrs["steps"] or Path(code.co_filename).parent != package:
+        source = Path(code.co_filename)
+        if code in costs or k < table.attrs["steps"] or not source.is_relative_to(package):
             continue
         if code.co_qualname.split(".<locals>.")[0] in costed - {code.co_qualname}:
             continue
-        if code.co_name in effort._MLT_DIAGNOSTICS:
+        if code in diagnostics:
             continue
         if code.co_name in effort._SELECT:  # a primitive (compiled.select), counted where called
             continue
+        module = ".".join(source.relative_to(package.parent).with_suffix("").parts)
         function = functools.reduce(
-            getattr,
-            code.co_qualname.split("."),
-            sys.modules[f"harp_analysis.{Path(code.co_filename).stem}"],
+            getattr, code.co_qualname.split("."), importlib.import_module(module)
         )
         assert effort.count_flops(function) == 0, code.co_qualname
+        checked += 1
+    assert checked  # the functions of the package's subfolders are found (RigidBodyModel.air)
 
 
 def test_mlt_count_scales_with_the_segments():

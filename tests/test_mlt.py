@@ -18,6 +18,7 @@ import pytest
 from harp_analysis.engines import kepler, mlt, sixdof
 from harp_analysis.foundation import earth
 from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models import rigid_body
 from harp_analysis.models.atmosphere import get_atmosphere
 from harp_analysis.models.drag import M829
 from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2, baseline_chapter_4, chapter_2
@@ -109,7 +110,7 @@ FLIGHT_STATES = [  # projectile, altitude (m), speed (m/s), roll rate (rad/s)
 
 @pytest.mark.parametrize("projectile, altitude, speed, spin", FLIGHT_STATES)
 def test_epicyclic_roots_are_mccoys(projectile, altitude, speed, spin):
-    model = sixdof.rigid_body_model(projectile, "two_segment", (0.0, 0.0, 0.0), "spherical")
+    model = rigid_body.rigid_body_model(projectile, "two_segment", (0.0, 0.0, 0.0), "spherical")
     state = (0.0, 0.0, -altitude, 0.0, 0.7, 0.0, speed, 0.0, 0.0, spin, 0.0, 0.0)
     c = mlt.segment_coefficients(model, state)
     fast, slow = mlt.epicyclic_roots(c, projectile.diameter_m)
@@ -251,9 +252,9 @@ def test_6dof_minus_linear_theory_is_exactly_the_dropped_products(psi):
     """At finite lateral states (3 m/s, 0.05 rad/s, a 5 m/s cross wind) the 6DOF's no-roll
     derivative (Magnus inert, y = 0 so both gravities agree) minus linear theory's is the sum
     of the products eq L1 lists, to rounding."""
-    model = sixdof.rigid_body_model(LP, "two_segment", (0.0, 5.0, 0.0), "flat")
+    model = rigid_body.rigid_body_model(LP, "two_segment", (0.0, 5.0, 0.0), "flat")
     state = _air_state(model, 0.8, psi, 3.0, -0.7, 0.05)
-    full = np.array(model.no_roll(0.0, state))
+    full = np.array(sixdof.right_hand_side(0.0, state, model.kernel))
     linear = np.array(mlt.linear_theory_derivatives(model, state.tolist()))
     dropped = _dropped_products(model, state)
     assert np.max(np.abs(dropped[6:9] / full[6:9])) > 1e-3  # the products matter here
@@ -266,9 +267,9 @@ def test_6dof_minus_linear_theory_is_exactly_the_dropped_products(psi):
 def test_linear_theory_is_the_6dof_at_small_lateral_states(theta):
     """v, w (air-relative) of a mm/s and q, r of 1e-6 rad/s: the dropped products are below
     1e-6 of every derivative. (psi = 0: no wind along the axis, which u = V would also drop.)"""
-    model = sixdof.rigid_body_model(LP, "two_segment", (0.0, 5.0, 0.0), "flat")
+    model = rigid_body.rigid_body_model(LP, "two_segment", (0.0, 5.0, 0.0), "flat")
     state = _air_state(model, theta, 0.0, 1e-3, -0.7, 1e-6)
-    full = np.array(model.no_roll(0.0, state))
+    full = np.array(sixdof.right_hand_side(0.0, state, model.kernel))
     linear = np.array(mlt.linear_theory_derivatives(model, state.tolist()))
     np.testing.assert_allclose(linear[6:9], full[6:9], rtol=1e-6)
     np.testing.assert_allclose(linear[10:], full[10:], rtol=1e-6)
@@ -281,7 +282,7 @@ def test_closed_form_segment_has_the_linear_theory_derivative():
     """d/ds of propagate_segment at s = 0, times V/D, is linear_theory_derivatives at the same
     state (coefficients and rotation taken there): forward differences converge at first order,
     central ones agree to 1e-7."""
-    model = sixdof.rigid_body_model(LP, "two_segment", (0.0, 5.0, 0.0), "flat")
+    model = rigid_body.rigid_body_model(LP, "two_segment", (0.0, 5.0, 0.0), "flat")
     theta, psi = 0.8, 0.02
     state = _air_state(model, theta, psi, 2.0, -0.75, 0.03, x=1.2e4, z=-6e3, u=1750.0, p=320.0)
     state[1] = 30.0
@@ -419,7 +420,7 @@ def test_flight_table_matches_the_6dof():
     flight = mlt.simulate_mlt(LP_CHAPTER_2)
     with pytest.warns(TruncatedFlightWarning):
         six = sixdof.simulate_6dof(LP_CHAPTER_2, max_time_s=1.0, output_step_s=0.5)
-    assert tuple(flight.columns) == tuple(six.columns) == BASE_COLUMNS + sixdof.EXTRA_COLUMNS
+    assert tuple(flight.columns) == tuple(six.columns) == BASE_COLUMNS + rigid_body.EXTRA_COLUMNS
     attrs = flight.attrs
     assert set(METADATA_KEYS) <= set(attrs) and set(METADATA_KEYS) <= set(six.attrs)
     assert attrs["engine"] == "MLT" and attrs["launch"] == LP_CHAPTER_2
@@ -442,7 +443,7 @@ def test_flight_table_matches_the_6dof():
 def test_table_rows_are_the_closed_form_of_their_segment():
     """The table's rows (the closed forms of eqs L2-L7, compiled) are the same closed forms
     run by Python, to rounding, across a segment in dense air with lateral motion."""
-    model = sixdof.rigid_body_model(LP, "two_segment", (0.0, 5.0, 0.0), "flat")
+    model = rigid_body.rigid_body_model(LP, "two_segment", (0.0, 5.0, 0.0), "flat")
     state = tuple(_air_state(model, 0.8, 0.02, 2.0, -0.75, 0.03, z=-3e3).tolist())
     segment = mlt._solve_segment(model, state, 0.0, 1000.0 / model.d, "middle", True, False)
     times = np.linspace(0.0, segment.duration_s(model), 7)

@@ -14,6 +14,7 @@ from hypothesis import strategies as st
 from harp_analysis.engines import sixdof, threedof
 from harp_analysis.foundation import earth
 from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models import rigid_body
 from harp_analysis.models.atmosphere import get_atmosphere
 from harp_analysis.models.drag import M829
 from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2, Launch, chapter_2
@@ -70,7 +71,7 @@ _states = st.tuples(
     state=_states,
     wind=st.tuples(*[st.floats(-30.0, 30.0)] * 3),
     projectile=st.sampled_from([HP, LP]),
-    density_altitude=st.sampled_from(sixdof.DENSITY_ALTITUDES),
+    density_altitude=st.sampled_from(rigid_body.DENSITY_ALTITUDES),
 )
 def test_no_roll_derivative_is_appendix_b_turned_into_the_no_roll_frame(
     state, wind, projectile, density_altitude
@@ -244,7 +245,7 @@ def flights():
 
 def test_flight_table_and_statistics(flights):
     flight = flights["wind"]
-    assert tuple(flight.columns) == BASE_COLUMNS + sixdof.EXTRA_COLUMNS
+    assert tuple(flight.columns) == BASE_COLUMNS + rigid_body.EXTRA_COLUMNS
     assert set(METADATA_KEYS) <= set(flight.attrs)
     assert flight.attrs["engine"] == "6DOF" and flight.attrs["launch"] == HP_CHAPTER_2
     assert flight.attrs["stop_reason"] == "impact"

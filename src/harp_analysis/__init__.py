@@ -5,7 +5,8 @@ SI units throughout the package (m, s, kg, rad) unless a module's first line say
 
 The names a user starts from are importable here (``from harp_analysis import Launch,
 simulate_3dof``): a launch and the text's named ones, the projectiles and sites, each engine's
-flight, the firing solutions and the warnings the models give. Each is imported on first use,
+flight and ``fly(launch, engine="3dof")`` with the engines' records (``get_engine``), the firing
+solutions and the warnings the models give. Each is imported on first use,
 so ``import harp_analysis`` starts no compiler; everything else lives in its module
 (``harp_analysis.analyses.harp.apogees``, ``harp_analysis.analyses.error_budget``, ...).
 """
@@ -37,7 +38,9 @@ _API = {
     "YUMA": "models.sites",
     "get_site": "models.sites",
     "get_atmosphere": "models.atmosphere",
-    # the engines, one flight each, all returning the shared trajectory table
+    # the engines, one flight each, all returning the shared trajectory table; any by its name
+    "fly": "engines.catalogue",
+    "get_engine": "engines.catalogue",
     "simulate_3dof": "engines.threedof",
     "fly_3dof": "engines.threedof",
     "simulate_6dof": "engines.sixdof",
@@ -58,6 +61,7 @@ __all__ = ["__version__", *_API]
 if TYPE_CHECKING:  # for type checkers and editors; at run time each name is imported lazily
     from .analyses.fire_control.firing import TargetPoint, destination, firing_solutions
     from .engines.appendix_a import simulate_appendix_a
+    from .engines.catalogue import fly, get_engine
     from .engines.mks import simulate_mks
     from .engines.mlt import simulate_mlt
     from .engines.sixdof import simulate_6dof

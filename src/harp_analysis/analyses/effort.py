@@ -30,15 +30,20 @@ The counting rule, applied to the code that each method runs per evaluation:
   cmath.exp is 40 (a real exp, cos and sin and two products would be 32) and cmath.sqrt 4
   (hypot, a real sqrt and about 5 operations would be 7).
 
-What the branch rule changes in the 3DOF and 6DOF: the 6DOF's ``_air_altitude`` and the
+Which functions an engine's work runs, which of them compute in complex numbers and how long
+their unsized loops are, the engine declares (its record's ``counted`` in
+:mod:`harp_analysis.engines.catalogue`, a tuple of
+:class:`~harp_analysis.foundation.counting.Counted`); this module applies the rule to them.
+
+What the branch rule changes in the 3DOF and 6DOF: the rigid body's ``air_altitude`` and the
 3DOF's ``_air_velocity`` have branches of different cost (1 fewer each when only the costlier
 counts): the 6DOF's right-hand side is 300 operations (its coefficient interpolation 2 per each
 of the table's 9 columns), the 3DOF's 80 (81; 4 of them the day's air of
 :func:`.atmosphere.day_air`, which the 6DOF leaves out). In MLT the loop is ``_phi``'s series
-(18 terms of :data:`harp_analysis.engines.mlt._PHI3_SERIES`); complex-weighted are ``_phi`` (also
-where ``_scalar_solution`` calls it on a real argument) and ``_epicyclic_solution``, while
-``propagate_segment``, real but for 6 complex operations (about 14 real ones), counts at
-weight 1.
+(the 18 terms of phi_3, a constant of :mod:`harp_analysis.engines.mlt`); complex-weighted are
+``_phi`` (also where ``_scalar_solution`` calls it on a real argument) and
+``_epicyclic_solution``, while ``propagate_segment``, real but for 6 complex operations (about
+14 real ones), counts at weight 1.
 
 An integration costs its right-hand side times the evaluations it made, plus the scheme's own
 arithmetic per step (DOP853: combining 13 stage derivatives per state, the two error
@@ -82,7 +87,9 @@ interpolant, which locates its events (and samples its rows), about 18 % of them
 radial-velocity checks and root-finding propagations are counted. The 3DOF locates its events
 on its Hermite interpolant, whose arithmetic is not counted, and the 3DOF's and 6DOF's event
 functions' own operations are not (about 40 and 90 per step, 2 % and 1 % of a step), while
-MLT's ``_altitude`` and ``_radial_velocity`` bodies (14 a segment, 0.3 %) are.
+MLT's ``_altitude`` and ``_radial_velocity`` bodies (14 a segment, 0.3 %) are. MLT's validity
+check of each segment (:data:`harp_analysis.engines.mlt.DIAGNOSTICS`) is not counted, nor any
+call made within it.
 """
 
 from __future__ import annotations
@@ -99,11 +106,11 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..engines import mks, mlt, threedof
-from ..engines.sixdof import RigidBodyModel, simulate_6dof
+from ..engines import catalogue, mks, mlt
 from ..foundation import earth
 from ..foundation.caching import cached_copies
-from ..models import atmosphere, drag
+from ..foundation.counting import Counted
+from ..models import atmosphere
 
 __all__ = [
     "COMPLEX_WEIGHT",
@@ -359,6 +366,22 @@ def dop853_step_flops(n_states: int) -> int:
     return per_state * n_states + 30
 
 
+def counted_flops(counted: Counted) -> int:
+    """Operations per call of one function an engine declares (:mod:`.counting`): its own
+    body, at :data:`COMPLEX_WEIGHT` if it computes in complex numbers, its loops sized by the
+    engine's trips."""
+    weight = COMPLEX_WEIGHT if counted.complex_numbers else 1
+    return count_flops(counted.function, weight=weight, trips=dict(counted.trips))
+
+
+def evaluation_flops(engine: catalogue.Engine, launch) -> int:
+    """Operations of one evaluation of ``engine``'s right-hand side for ``launch``: every
+    function it declares (:attr:`harp_analysis.engines.catalogue.Engine.counted`), once each."""
+    if engine.counted is None:
+        raise ValueError(f"the {engine.label} declares no functions to count")
+    return sum(counted_flops(counted) for counted in engine.counted(launch))
+
+
 def mks_apogee(
     speed_m_s,
     elevation_rad,
@@ -394,34 +417,12 @@ def mks_apogee_flops() -> int:
 
 
 @cached_copies
-def _mlt_costs() -> dict:
-    """Own operations per call of each function MLT's segment loop runs, by code object."""
-    m, complex_ = mlt, COMPLEX_WEIGHT
-    average = {"zip(a, b)": len(m.SegmentCoefficients._fields), "zip(x, y)": 3}
-    functions = [  # (function, weight, trips)
-        (m.segment_coefficients, 1, None),
-        (m._rotation, 1, None),
-        (m._apply, 1, None),
-        (m._apply_transpose, 1, None),
-        (m._gravity, 1, None),
-        (RigidBodyModel.air_altitude, 1, None),
-        (RigidBodyModel.coefficients, 1, None),
-        (atmosphere._two_segment_density, 1, None),
-        (atmosphere._two_segment_speed_of_sound, 1, None),
-        (m.propagate_segment, 1, None),
-        (m._scalar_solution, 1, None),
-        (m._phi, complex_, None),
-        (m._epicyclic_solution, complex_, None),
-        (m._solve_segment, 1, {"zip(rows0, rows1)": 3}),
-        (m._average, 1, average),
-        (m._Segment.duration_s, 1, None),
-        (m._altitude, 1, None),
-        (m._radial_velocity, 1, None),
-    ]
-    return {
-        function.__code__: count_flops(function, weight=weight, trips=trips)
-        for function, weight, trips in functions
-    }
+def _mlt_costs(launch) -> dict:
+    """Own operations per call of each function MLT's segment loop runs for ``launch``, by code
+    object (:func:`harp_analysis.engines.mlt.counted_functions`)."""
+    counted = catalogue.get_engine("mlt").counted
+    assert counted is not None  # MLT declares its segment loop's functions
+    return {entry.function.__code__: counted_flops(entry) for entry in counted(launch)}
 
 
 def _segment_loop(tree) -> tuple:
@@ -430,15 +431,12 @@ def _segment_loop(tree) -> tuple:
     return loop.test, loop.body
 
 
-# MLT's validity diagnostics, wherever simulate_mlt runs them: not counted (module docstring).
-_MLT_DIAGNOSTICS = ("_check_validity", "_validity_problem")
-
-
 def _mlt_run(launch, **flight) -> tuple[Counter, pd.DataFrame]:
     """One MLT flight and the calls of every Python function that its segment loop made (by
     code object; a profile hook), leaving out the diagnostics and what runs after the loop
     (the output rows)."""
     simulate = mlt.simulate_mlt.__code__
+    diagnostics = {function.__code__ for function in mlt.DIAGNOSTICS}  # not counted
     loop_test, loop_body = _segment_loop(_function_tree(mlt.simulate_mlt))
     first = simulate.co_firstlineno + loop_test.lineno - 1
     last = simulate.co_firstlineno + loop_body[-1].end_lineno - 1
@@ -449,7 +447,7 @@ def _mlt_run(launch, **flight) -> tuple[Counter, pd.DataFrame]:
             return
         outer = frame.f_back
         while outer is not None and outer.f_code is not simulate:
-            if outer.f_code.co_name in _MLT_DIAGNOSTICS:
+            if outer.f_code in diagnostics:
                 return
             outer = outer.f_back
         if outer is not None and first <= outer.f_lineno <= last:
@@ -468,11 +466,11 @@ def _mlt_count(launch, **flight) -> tuple[int, pd.DataFrame]:
     calls, table = _mlt_run(launch, **flight)
     if launch.atmosphere != "two_segment":
         raise ValueError(
-            "MLT's operations are counted in the two-segment atmosphere only "
-            "(its density and speed of sound are the counted kernels)"
+            "MLT's operations are counted in the two-segment atmosphere only (Fig 4.7's; "
+            "the 1976 standard's kernels call helpers that the count does not see)"
         )
     loop = _count(mlt.simulate_mlt, part=_segment_loop)
-    flops = sum(calls[code] * cost for code, cost in _mlt_costs().items())
+    flops = sum(calls[code] * cost for code, cost in _mlt_costs(launch).items())
     return flops + table.attrs["steps"] * loop, table
 
 
@@ -507,15 +505,16 @@ def effort_table(elevation_deg: float = 50.0, timed: bool = True) -> pd.DataFram
     from ..models.launch import HP_CHAPTER_2
 
     launch = HP_CHAPTER_2.but(elevation_deg=elevation_deg)
-    six = simulate_6dof(launch, density_altitude="spherical")
-    three = threedof.simulate_3dof(launch)
-    six_rhs = count_flops(*_sixdof_functions())
+    rigid, point_mass, linear_theory = map(catalogue.get_engine, ("6dof", "3dof", "mlt"))
+    six = rigid.fly(launch, density_altitude="spherical")
+    three = point_mass.fly(launch)
+    six_rhs = evaluation_flops(rigid, launch)
     # scipy's DOP853 with dense output: 2 evaluations to start, 12 per step attempt and 3 more
     # per accepted step for the interpolant its events are found on.
     six_attempts = (six.attrs["rhs_evaluations"] - 2 - 3 * six.attrs["steps"]) / 12
     six_flops = six.attrs["rhs_evaluations"] * six_rhs + six_attempts * dop853_step_flops(12)
-    three_flops = three.attrs["rhs_evaluations"] * count_flops(
-        *_threedof_functions()
+    three_flops = three.attrs["rhs_evaluations"] * evaluation_flops(
+        point_mass, launch
     ) + three.attrs["rhs_evaluations"] / 12 * dop853_step_flops(6)
     mlt_flight: dict[str, Any] = dict(
         density_altitude="spherical",
@@ -541,21 +540,21 @@ def effort_table(elevation_deg: float = 50.0, timed: bool = True) -> pd.DataFram
 
     rows = [
         (
-            "6DOF",
+            rigid.label,
             six_flops,
-            seconds(lambda: simulate_6dof(launch, density_altitude="spherical"), repeat=2),
+            seconds(lambda: rigid.fly(launch, density_altitude="spherical"), repeat=2),
             six.attrs["apogee_altitude_m"],
         ),
         (
-            "3DOF",
+            point_mass.label,
             three_flops,
-            seconds(lambda: threedof.simulate_3dof(launch)),
+            seconds(lambda: point_mass.fly(launch)),
             three.attrs["apogee_altitude_m"],
         ),
         (
-            "MLT",
+            linear_theory.label,
             linear_flops,
-            seconds(lambda: mlt.simulate_mlt(launch, **mlt_flight)),
+            seconds(lambda: linear_theory.fly(launch, **mlt_flight)),
             linear.attrs["apogee_altitude_m"],
         ),
         (
@@ -574,31 +573,6 @@ def effort_table(elevation_deg: float = 50.0, timed: bool = True) -> pd.DataFram
     table = pd.DataFrame(rows, columns=["method", "flops", "seconds", "apogee_m"])
     table["apogee_difference_m"] = (table.apogee_m - six.attrs["apogee_altitude_m"]).abs()
     return table.set_index("method")
-
-
-def _threedof_functions():
-    return (
-        threedof._acceleration,
-        threedof._forces,
-        threedof._air_velocity,
-        atmosphere._two_segment_density,
-        atmosphere._two_segment_speed_of_sound,
-        atmosphere.day_air,
-        drag._tabulated,
-    )
-
-
-def _sixdof_functions():
-    from ..engines import sixdof
-
-    return (
-        sixdof._no_roll,
-        sixdof._aerodynamics,
-        sixdof.RigidBodyModel.air_altitude,
-        sixdof.RigidBodyModel.coefficients,
-        atmosphere._two_segment_density,
-        atmosphere._two_segment_speed_of_sound,
-    )
 
 
 def orders_of_magnitude(method: str, than: str = "MKS (3 terms)") -> float:

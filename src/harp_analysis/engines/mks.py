@@ -30,6 +30,16 @@ eq 6.4's apogee it takes no sine or cosine, and near it only those of a small an
 
 SI units: r in m, u in 1/m, h in m^2/s, k in 1/m (the text's 0.117 /km is 1.17e-4 /m; beta
 and tau are dimensionless only if k and r0, m and A share units).
+
+The compiled building blocks, for other compiled code that solves many MKS trajectories in its
+own loops (the firing solver, :mod:`harp_analysis.analyses.fire_control.solver`; the improved MKS,
+:mod:`.mks_improved`): a solution's constants live in a table, one column per launch
+(:attr:`ModifiedKeplerSolution.kernel_table`; :data:`AMPLITUDES_ROW` + N rows for N terms), which
+:func:`solve_constants` fills from the launch's numbers; :func:`point` evaluates u and its two
+derivatives at an angle, :func:`find_apogees` and :func:`find_impacts` find the first zero of
+du/dtheta and the return to the launch radius, :func:`crossing_angle` where a branch crosses a
+radius, and :func:`time_to` eq 3.32's time of flight to an angle. They are unchecked, like every
+kernel: :class:`ModifiedKeplerSolution` and :func:`for_launch` are the checked door.
 """
 
 from __future__ import annotations
@@ -195,7 +205,10 @@ def _argument(
 # A solution keeps its constants in a table with one row per quantity and one column per launch
 # (rows are contiguous arrays): h0, h_inf, c1, c2, rho = sqrt(c1^2 + c2^2), eq 6.4's apse angle,
 # the asymptotic conic's eccentricity, eq 6.4's apogee altitude, then the amplitudes A_n.
-_H0, _H_INF, _C1, _C2, _RHO, _APSE, _ECCENTRICITY, _APOGEE_6_4, _AMPLITUDES = range(9)
+_H0, _H_INF, _C1, _C2, _RHO, _APSE, _ECCENTRICITY, _APOGEE_6_4 = range(8)
+#: The table's row of the first amplitude A_0: a table of N terms has AMPLITUDES_ROW + N rows
+#: (the kernels' building blocks, module docstring).
+AMPLITUDES_ROW = 8
 #: The escape check looks at the angle where the driving terms have died: e^{-tau theta} = e^-20.
 _LATE_DECAY_EXPONENT = 20.0
 #: Newton's iterations stop once a step is below _NEWTON_STEP_RAD, or below _NEWTON_NOISE_RAD
@@ -235,7 +248,7 @@ def _sin_cos(angle):
 
 
 @jit
-def _point(table, i, tau, theta):
+def point(table, i, tau, theta):
     """u, du/dtheta and d2u/dtheta2 of launch ``i`` (column ``i`` of ``table``) at ``theta``.
 
     The conic part c1 sin(theta) + c2 cos(theta) is written about eq 6.4's angle, the apse:
@@ -246,9 +259,9 @@ def _point(table, i, tau, theta):
     decay = math.exp(-tau * theta)
     terms = slope = curvature = 0.0
     factor = 1.0  # e^{-n tau theta}
-    for n in range(table.shape[0] - _AMPLITUDES):
+    for n in range(table.shape[0] - AMPLITUDES_ROW):
         rate = n * tau
-        term = table[_AMPLITUDES + n, i] * factor
+        term = table[AMPLITUDES_ROW + n, i] * factor
         terms += term
         slope -= rate * term
         curvature += rate * rate * term
@@ -257,7 +270,7 @@ def _point(table, i, tau, theta):
 
 
 @jit
-def _solve(speed, elevation, beta, tau, radius, drive_scale, decay_scale, table, escapes):
+def solve_constants(speed, elevation, beta, tau, radius, drive_scale, decay_scale, table, escapes):
     """The constants of every launch into its column of ``table``, and whether it escapes
     (its apogee is then NaN) into ``escapes``; arguments have one value, or one per launch.
     Returns the index of the first launch whose constants do not reproduce the launch
@@ -273,10 +286,10 @@ def _solve(speed, elevation, beta, tau, radius, drive_scale, decay_scale, table,
         ratio = -2 * _at(beta, i) * _at(drive_scale, i)
         power = factorial = 1.0
         total = moment = constant = 0.0  # sum_n A_n, sum_n n tau A_n, terms that do not decay
-        for n in range(table.shape[0] - _AMPLITUDES):
+        for n in range(table.shape[0] - AMPLITUDES_ROW):
             rate = n * t
             amplitude = c3 * power / (factorial * (1 + rate * rate))
-            table[_AMPLITUDES + n, i] = amplitude
+            table[AMPLITUDES_ROW + n, i] = amplitude
             total += amplitude
             moment += rate * amplitude
             if rate == 0:
@@ -302,10 +315,10 @@ def _solve(speed, elevation, beta, tau, radius, drive_scale, decay_scale, table,
         escapes[i] = False
         if eccentricity >= 1.0:  # an open conic: escapes if aloft and climbing once the drive died
             late = _LATE_DECAY_EXPONENT / t if t > 0 else 0.0
-            u, slope, _ = _point(table, i, t, late)
+            u, slope, _ = point(table, i, t, late)
             escapes[i] = u <= inverse_radius and slope < 0
         table[_APOGEE_6_4, i] = (
-            math.nan if escapes[i] else np.divide(1.0, _point(table, i, t, apse)[0]) - r
+            math.nan if escapes[i] else np.divide(1.0, point(table, i, t, apse)[0]) - r
         )  # eq 6.5
     return -1
 
@@ -319,7 +332,7 @@ def _converged(step, previous):
 
 
 @jit
-def _apogees(table, tau, radius, escapes, angle, altitude):
+def find_apogees(table, tau, radius, escapes, angle, altitude):
     """Every launch's first zero of du/dtheta into ``angle``, by Newton's iteration from eq
     6.4's angle, and the altitude there into ``altitude`` (NaN for a launch that escapes);
     the index of the first launch whose iteration leaves the finite numbers, or -1."""
@@ -329,7 +342,7 @@ def _apogees(table, tau, radius, escapes, angle, altitude):
             continue
         rate, theta, step = _at(tau, i), table[_APSE, i], math.inf
         for _ in range(_NEWTON_ITERATIONS):
-            u, slope, curvature = _point(table, i, rate, theta)
+            u, slope, curvature = point(table, i, rate, theta)
             previous, step = step, np.divide(slope, curvature)
             theta -= step
             if not math.isfinite(theta):
@@ -337,13 +350,13 @@ def _apogees(table, tau, radius, escapes, angle, altitude):
             if _converged(step, previous):
                 break  # where u' = 0 a step this small moves u less than its rounding
         if not _converged(step, previous):
-            u = _point(table, i, rate, theta)[0]
+            u = point(table, i, rate, theta)[0]
         angle[i], altitude[i] = theta, np.divide(1.0, u) - _at(radius, i)
     return -1
 
 
 @jit
-def _impacts(table, tau, radius, escapes, apogee_angle, angle):
+def find_impacts(table, tau, radius, escapes, apogee_angle, angle):
     """Every launch's return to its launch radius into ``angle``, by Newton's iteration from
     twice its apogee angle (a symmetric conic's return; NaN for a launch that escapes); the
     index of the first launch whose iteration leaves the finite numbers, or -1."""
@@ -354,7 +367,7 @@ def _impacts(table, tau, radius, escapes, apogee_angle, angle):
         rate, inverse_radius = _at(tau, i), 1 / _at(radius, i)
         theta, step = 2 * apogee_angle[i], math.inf
         for _ in range(_NEWTON_ITERATIONS):
-            u, slope, _ = _point(table, i, rate, theta)
+            u, slope, _ = point(table, i, rate, theta)
             previous, step = step, np.divide(u - inverse_radius, slope)
             theta -= step
             if not math.isfinite(theta):
@@ -366,14 +379,14 @@ def _impacts(table, tau, radius, escapes, apogee_angle, angle):
 
 
 @jit
-def _crossing(table, i, tau, low, high, target_u, sign):
+def crossing_angle(table, i, tau, low, high, target_u, sign):
     """The angle in [low, high] where launch ``i``'s u = 1/r equals ``target_u``: u rises
     through it on the descending branch (``sign`` +1: from the apogee to the impact) and
     falls through it on the ascending one (-1: from the muzzle to the apogee). Newton's
     iteration from the branch's far end, kept inside the bracket by bisection."""
     theta = high if sign > 0 else low
     for _ in range(_CROSSING_ITERATIONS):
-        u, slope, _ = _point(table, i, tau, theta)
+        u, slope, _ = point(table, i, tau, theta)
         excess = u - target_u
         if sign * excess > 0:  # past the crossing
             high = theta
@@ -397,13 +410,13 @@ def _interval_time(table, i, tau, growth, low, high, nodes, weights):
     total = 0.0
     for j in range(nodes.size):
         theta = low + half * (nodes[j] + 1.0)
-        u = _point(table, i, tau, theta)[0]
+        u = point(table, i, tau, theta)[0]
         momentum = table[_H_INF, i] * math.exp(growth * math.exp(-tau * theta))
         total += weights[j] / (u * u * momentum)
     return half * total
 
 
-#: Where :func:`_time_to` breaks its intervals, in units of 1/tau: the driving terms' decay
+#: Where :func:`time_to` breaks its intervals, in units of 1/tau: the driving terms' decay
 #: e^{-tau theta} sets the integrand's fastest variation (within 20/tau it has died to e^-20;
 #: past it u is a conic and h constant to 2e-9). With 8 points each, the time of flight to
 #: the impact agrees with 4,000 equal intervals to 1 ns over 1-89.8 deg for HP, LP and the
@@ -413,7 +426,7 @@ _TIME_BREAKS = (1.0, 3.0, 8.0, 20.0)
 
 
 @jit
-def _time_to(table, i, tau, growth, theta, nodes, weights):
+def time_to(table, i, tau, growth, theta, nodes, weights):
     """Eq 3.32's time of flight (s) of launch ``i`` from launch to the angle ``theta``: one
     :func:`_interval_time` per interval between the breaks of :data:`_TIME_BREAKS` below it."""
     total = low = 0.0
@@ -446,14 +459,19 @@ def _times(table, tau, growth, theta, nodes, weights, out):
 def _solve_through_impact(
     speed, elevation, beta, tau, radius, drive_scale, decay_scale, table, escapes, apogee, impact
 ):
-    """:func:`_solve`, then :func:`_apogees` into ``apogee`` (angle, altitude) and
-    :func:`_impacts` into ``impact``, in one call. Returns how far it got: 0 if the constants
+    """:func:`solve_constants`, then :func:`find_apogees` into ``apogee`` (angle, altitude) and
+    :func:`find_impacts` into ``impact``, in one call. Returns how far it got: 0 if the constants
     fail, 1 if the apogee's iteration does, 2 if the impact's does, 3 if none fails."""
-    if _solve(speed, elevation, beta, tau, radius, drive_scale, decay_scale, table, escapes) >= 0:
+    if (
+        solve_constants(
+            speed, elevation, beta, tau, radius, drive_scale, decay_scale, table, escapes
+        )
+        >= 0
+    ):
         return 0
-    if _apogees(table, tau, radius, escapes, apogee[0], apogee[1]) >= 0:
+    if find_apogees(table, tau, radius, escapes, apogee[0], apogee[1]) >= 0:
         return 1
-    if _impacts(table, tau, radius, escapes, apogee[0], impact) >= 0:
+    if find_impacts(table, tau, radius, escapes, apogee[0], impact) >= 0:
         return 2
     return 3
 
@@ -466,7 +484,7 @@ def _evaluate(table, tau, theta, out):
         launch, row = min(i, table.shape[1] - 1), min(i, theta.shape[0] - 1)
         rate = _at(tau, launch)
         for j in range(out.shape[2]):
-            out[0, i, j], out[1, i, j], out[2, i, j] = _point(table, launch, rate, theta[row, j])
+            out[0, i, j], out[1, i, j], out[2, i, j] = point(table, launch, rate, theta[row, j])
 
 
 @jit
@@ -557,7 +575,7 @@ class ModifiedKeplerSolution:
             self.drive_scale,
             self.decay_scale,
         ) = columns
-        self._table = np.empty((_AMPLITUDES + self.n_terms, count))
+        self._table = np.empty((AMPLITUDES_ROW + self.n_terms, count))
         self.escapes = np.empty(count, dtype=bool)
         if self.single:  # a kernel's call costs more than the apogee's and impact's iterations
             apogee, impact = np.empty((2, 1)), np.empty(1)
@@ -580,7 +598,7 @@ class ModifiedKeplerSolution:
             if reached == 3:
                 self.__dict__["impact_angle"] = impact[0]
         else:
-            failed = _solve(*self._arguments, self._table, self.escapes)
+            failed = solve_constants(*self._arguments, self._table, self.escapes)
         if failed >= 0:
             raise ValueError(
                 f"the MKS has no usable closed form at elevation_rad = "
@@ -607,12 +625,12 @@ class ModifiedKeplerSolution:
     @property
     def c3(self):
         """c3 = GM / h_inf^2 (1/m), eq 6.8: the amplitude of the series' first term."""
-        return _read_only(self._table[_AMPLITUDES, :, None])
+        return _read_only(self._table[AMPLITUDES_ROW, :, None])
 
     @property
     def amplitudes(self):
         """A_n, shape (m, N): the amplitudes of the series' terms e^{-n tau theta}."""
-        return _read_only(self._table[_AMPLITUDES:].T)
+        return _read_only(self._table[AMPLITUDES_ROW:].T)
 
     @property
     def rates(self):
@@ -628,6 +646,13 @@ class ModifiedKeplerSolution:
     def c2(self):
         """c2 (1/m), set by u(0) = 1/r0."""
         return _read_only(self._table[_C2, :, None])
+
+    @property
+    def kernel_table(self):
+        """The constants of every launch as the compiled kernels take them (module docstring):
+        one column per launch, rows h0, h_inf, c1, c2, rho, eq 6.4's angle, the asymptotic
+        eccentricity, eq 6.4's apogee, then the amplitudes from :data:`AMPLITUDES_ROW`."""
+        return _read_only(self._table[:])
 
     @property
     def asymptotic_eccentricity(self):
@@ -708,7 +733,7 @@ class ModifiedKeplerSolution:
     def _first_zero_apogee(self):
         """(angle, altitude) of every launch's first zero of du/dtheta, shapes (m,)."""
         angle, altitude = np.empty((2, self._table.shape[1]))
-        failed = _apogees(
+        failed = find_apogees(
             self._table, self._arguments[3], self._arguments[4], self.escapes, angle, altitude
         )
         self._newton_failed("apogee", failed)
@@ -749,7 +774,7 @@ class ModifiedKeplerSolution:
         """Angular range (rad) where the descending solution returns to the launch radius; NaN
         for a launch that escapes (:attr:`escapes`)."""
         angle = np.empty(self._table.shape[1])
-        failed = _impacts(
+        failed = find_impacts(
             self._table,
             self._arguments[3],
             self._arguments[4],

@@ -213,7 +213,7 @@ def _loss_rate(theta, u, slope, h, air):
 @jit(inline=True)
 def _altitude(path, tau, radius, theta):
     """Altitude (m) at ``theta`` of the single-launch MKS whose constants are ``path``."""
-    return 1 / mks._point(path, 0, tau, theta)[0] - radius
+    return 1 / mks.point(path, 0, tau, theta)[0] - radius
 
 
 @jit(inline=True)
@@ -272,7 +272,7 @@ def _ascent_losses(path, tau, h_inf, decay, apogee, radius, air):
     theta = _distances(_top_angle(path, tau, radius, 0.0, apogee, True))
     rate, cross = np.empty(theta.size), np.empty(theta.size)
     for i in range(theta.size):
-        u, slope, _ = mks._point(path, 0, tau, theta[i])
+        u, slope, _ = mks.point(path, 0, tau, theta[i])
         h = h_inf * math.exp(decay * math.exp(-tau * theta[i]))
         rate[i], cross[i] = _loss_rate(theta[i], u, slope, h, air)
     loss, rate_tau = _moments(rate, theta, 0.0)
@@ -282,7 +282,7 @@ def _ascent_losses(path, tau, h_inf, decay, apogee, radius, air):
 @jit(inline=True)
 def _descent_rate(theta, loss, path, tau, h_inf, air):
     """dL/dtheta along the MKS of ``path`` flown with the speed lost so far, h = h_inf e^-L."""
-    u, slope, _ = mks._point(path, 0, tau, theta)
+    u, slope, _ = mks.point(path, 0, tau, theta)
     h = h_inf * math.exp(-loss)
     if not h > 0:  # every bit of angular momentum lost (a trial step's): no finite rate
         return math.inf
@@ -456,7 +456,7 @@ class _Air:
 def _path(solution: mks.ModifiedKeplerSolution) -> tuple:
     """A single-launch MKS as the compiled losses take it: its constants (as its own kernels
     take them), tau and h_inf."""
-    return solution._table, float(solution.tau[0, 0]), float(solution.h_inf[0, 0])
+    return solution.kernel_table, float(solution.tau[0, 0]), float(solution.h_inf[0, 0])
 
 
 def _along_ascent(solution: mks.ModifiedKeplerSolution, air: _Air) -> tuple[float, float, float]:
@@ -590,7 +590,7 @@ def _reentry_terms(rates, amplitudes, impact, theta):
 def _impact_excess(theta, path, tau, rates, amplitudes, inverse_radius):
     """u - 1/r0 at ``theta`` of the solution (the ascent's MKS ``path`` and the re-entry terms)
     whose impact is at ``theta``: zero at the impact (ImprovedSolution._impact_angle)."""
-    ascent = mks._point(path, 0, tau, theta)[0]
+    ascent = mks.point(path, 0, tau, theta)[0]
     return ascent + _reentry_terms(rates, amplitudes, theta, theta)[0] - inverse_radius
 
 

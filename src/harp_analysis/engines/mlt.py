@@ -61,8 +61,8 @@ k = pi rho D^3 / 8 and (v_w, w_w) the wind resolved in N.
 Time: with V frozen, dt = D ds / V, so a segment of ``segment_length_m`` L lasts L / V. The
 Earth, gravity (central, GM/r^2, frozen per segment; ``gravity="uniform"`` keeps GM/R^2 along
 the launch vertical for a flat-Earth check), atmosphere (flat or spherical altitude), wind and
-M829 tables are the 6DOF's (:class:`harp_analysis.engines.sixdof.RigidBodyModel`), so differences
-between the two come from linear theory alone.
+M829 tables are the 6DOF's (:class:`harp_analysis.models.rigid_body.RigidBodyModel`, which both
+fly), so differences between the two come from linear theory alone.
 
 Cost: segments are sequential (each starts where the last ended), so there is nothing to
 vectorise across them, and a segment's internals are 2x2 complex closed forms on which numpy's
@@ -109,6 +109,7 @@ from scipy.optimize import brentq
 
 from ..foundation import earth
 from ..foundation.compiled import formula, jit
+from ..foundation.counting import Counted
 from ..foundation.validation import (
     ModelValidityWarning,
     check_choice,
@@ -116,10 +117,9 @@ from ..foundation.validation import (
     finite_scalar,
     positive_scalar,
 )
+from ..models.atmosphere import get_atmosphere
 from ..models.launch import HP_CHAPTER_2, Launch
-from ..models.trajectory import TruncatedFlightWarning, describe, output_times
-from . import kepler
-from .sixdof import (
+from ..models.rigid_body import (
     DENSITY_ALTITUDES,
     RigidBodyKernel,
     RigidBodyModel,
@@ -129,6 +129,8 @@ from .sixdof import (
     rigid_body_launch,
     trajectory_table,
 )
+from ..models.trajectory import TruncatedFlightWarning, describe, output_times
+from . import kepler
 
 __all__ = [
     "SEGMENT_LENGTH_M",
@@ -148,6 +150,8 @@ __all__ = [
     "simulate_mlt",
     "linear_theory_derivatives",
     "simulate_linear_theory_limit",
+    "counted_functions",
+    "DIAGNOSTICS",
     "warm_up",
 ]
 
@@ -565,6 +569,43 @@ def _divergence(launch: Launch, time_s: float, state, problem: str | None) -> st
     )
 
 
+#: The check of each segment's start against linear theory's assumptions (a growing epicyclic
+#: mode, an angle of attack beyond :data:`MAX_SMALL_ANGLE_DEG` where the air acts): a diagnostic,
+#: not the flight, so Fig 4.7 counts none of the calls made within it.
+DIAGNOSTICS = (_validity_problem,)
+
+
+def counted_functions(launch: Launch) -> tuple[Counted, ...]:
+    """Every function :func:`simulate_mlt`'s segment loop calls for ``launch``, each counted
+    once per call (:mod:`harp_analysis.analyses.effort`, Fig 4.7): the segment's coefficients
+    with the rotation, wind, gravity, air and coefficient table they read, the launch's
+    atmosphere's density and speed of sound, the closed-form propagation with its scalar and
+    epicyclic solutions (the latter and ``_phi`` in complex numbers), the two passes of eq L8,
+    a segment's duration and the impact and apogee checks."""
+    air = get_atmosphere(launch.atmosphere)
+    averaged = {"zip(a, b)": len(SegmentCoefficients._fields), "zip(x, y)": 3}
+    return (
+        Counted(segment_coefficients),
+        Counted(_rotation),
+        Counted(_apply),
+        Counted(_apply_transpose),
+        Counted(_gravity),
+        Counted(RigidBodyModel.air_altitude),
+        Counted(RigidBodyModel.coefficients),
+        Counted(air.density_kernel),
+        Counted(air.sound_kernel),
+        Counted(propagate_segment),
+        Counted(_scalar_solution),
+        Counted(_phi, complex_numbers=True),
+        Counted(_epicyclic_solution, complex_numbers=True),
+        Counted(_solve_segment, trips={"zip(rows0, rows1)": 3}),
+        Counted(_average, trips=averaged),
+        Counted(_Segment.duration_s),
+        Counted(_altitude),
+        Counted(_radial_velocity),
+    )
+
+
 def simulate_mlt(
     launch: Launch,
     *,
@@ -742,8 +783,8 @@ def simulate_mlt(
 
 
 def warm_up() -> None:
-    """Compile MLT's kernels (its table's rows, the 6DOF's) now, or load them from the on-disk
-    cache, not at first use."""
+    """Compile MLT's kernels (its table's rows, the rigid-body model's) now, or load them from the
+    on-disk cache, not at first use."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", TruncatedFlightWarning)  # a short flight compiles all
         simulate_mlt(HP_CHAPTER_2, max_time_s=1.0)

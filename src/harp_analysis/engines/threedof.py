@@ -37,6 +37,7 @@ import pandas as pd
 
 from ..foundation import earth
 from ..foundation.compiled import jit, vector
+from ..foundation.counting import Counted
 from ..foundation.validation import check_range, finite_array, finite_scalar, positive_scalar
 from ..models.atmosphere import SOUND_SQUARED_PER_KELVIN, air, day_air, get_atmosphere
 from ..models.drag import drag_coefficient
@@ -70,7 +71,14 @@ from .integrator import (
     trial_step,
 )
 
-__all__ = ["simulate_3dof", "simulate_3dof_batch", "fly_3dof", "Flights", "warm_up"]
+__all__ = [
+    "simulate_3dof",
+    "simulate_3dof_batch",
+    "fly_3dof",
+    "Flights",
+    "counted_functions",
+    "warm_up",
+]
 
 # --- the physics: one launch's right-hand side, compiled ---------------------------------------
 # What the launches of one batch share: the numbers of the atmosphere and the drag law
@@ -125,6 +133,26 @@ def _derivative(t, y, weather, air_code, drag_code, dynamics, out, row):
     out[row, 0], out[row, 1], out[row, 2] = y[3], y[4], y[5]
     out[row, 3], out[row, 4], out[row, 5] = _acceleration(
         t, y, weather, air_code, drag_code, dynamics
+    )
+
+
+def counted_functions(launch: Launch) -> tuple[Counted, ...]:
+    """The functions one evaluation of the right-hand side runs for ``launch``, each once: the
+    acceleration, the forces and the air velocity, the launch's atmosphere's density and speed of
+    sound, the day's air and its projectile's drag law (:mod:`harp_analysis.analyses.effort`
+    counts their operations per evaluation, Fig 4.7)."""
+    air = get_atmosphere(launch.atmosphere)
+    return tuple(
+        Counted(function)
+        for function in (
+            _acceleration,
+            _forces,
+            _air_velocity,
+            air.density_kernel,
+            air.sound_kernel,
+            day_air,
+            launch.projectile.drag_law.kernel,
+        )
     )
 
 

@@ -13,8 +13,9 @@ the M829 table (Mach 0 to 8) anyway.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, fields
-from typing import Protocol
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -36,10 +37,13 @@ __all__ = [
 
 class DragLaw(Protocol):
     """What a projectile's drag law offers: ``law(mach)``, checked, ``law.evaluate(mach)``,
-    unchecked, for the integration loops, and its number and ``kernel_parameters()`` for
-    compiled ones (:func:`drag_coefficient`)."""
+    unchecked, for the integration loops, and its number, ``kernel_parameters()`` and
+    ``kernel`` for compiled ones (:func:`drag_coefficient`)."""
 
     code: int  # its number in compiled loops (drag_coefficient)
+    #: The unchecked formula that ``evaluate`` and compiled loops run: Cd of the Mach number and
+    #: the law's parameters (``kernel_parameters()``), for counting its operations (Fig 4.7).
+    kernel: Callable[..., Any]
 
     def __call__(self, mach) -> np.ndarray: ...
 
@@ -86,6 +90,7 @@ class ExponentialDragLaw:
     c: float
 
     code = EXPONENTIAL_LAW
+    kernel = staticmethod(_exponential)
 
     def evaluate(self, mach):
         return _exponential(mach, self.a, self.b, self.c)
@@ -115,6 +120,7 @@ class TabulatedDragLaw:
             raise ValueError("cd table must have one value per Mach number")
 
     code = TABULATED_LAW
+    kernel = staticmethod(_tabulated)
 
     def evaluate(self, mach):
         return _tabulated(mach, self.mach, self.cd)

@@ -13,7 +13,9 @@ message, never as a traceback. Messages name a field by its control's label and 
 :func:`in_readers_words`), never by the code's name; the models' validity warnings are all
 recorded and shown, never silenced.
 
-The MKS here is the text's (Chapter 5's ECI MKS where the Earth turns,
+The 3DOF, the 6DOF and MLT are the engines of :mod:`harp_analysis.engines.catalogue`, under its
+labels (the 6DOF and MLT are its engines for Appendix B's rigid bodies). The MKS here is the text's
+(Chapter 5's ECI MKS where the Earth turns,
 :func:`harp_analysis.engines.mks_improved.dissertation`), the improved one on request; the HARP
 presets fly the Martlet as Chapter 6 models it
 (:func:`harp_analysis.analyses.harp.apogees.martlet`), with Yuma's thinner air as the day's density
@@ -38,7 +40,7 @@ from matplotlib.figure import Figure
 
 from ..analyses import mks_improvement
 from ..analyses.harp import apogees
-from ..engines import mks, mks_improved, mlt, sixdof, threedof
+from ..engines import catalogue, mks, mks_improved
 from ..foundation import earth
 from ..models.atmosphere import ATMOSPHERE_NAMES, SEA_LEVEL_DENSITY_KG_M3
 from ..models.drag import ExponentialDragLaw
@@ -67,8 +69,14 @@ __all__ = [
 ]
 
 PROJECTILES = ("HP", "LP", "baseline", "Martlet", "custom")
-#: The engines in the order they are drawn: the MKS and the 3DOF always, the rest on request.
-ENGINES = ("3DOF", "MKS", "improved MKS", "6DOF", "MLT")
+#: The engine every other is measured against, flown always.
+_REFERENCE = catalogue.get_engine("3dof")
+#: The catalogue's engines for Appendix B's projectiles (HP and LP), flown on request.
+_RIGID_BODY = {engine.label: engine for engine in catalogue.ENGINES.values() if engine.rigid_body}
+#: The engines in the order they are drawn: the 3DOF and the MKS always, the rest on request. The
+#: MKS is the text's and the improved MKS Chapter 7 C's (:mod:`.mks_improved`, sampled here);
+#: the others are the catalogue's, under its labels.
+ENGINES = (_REFERENCE.label, "MKS", "improved MKS", *_RIGID_BODY)
 #: Beyond this beta no MKS is shown: the three-term series of its driving function at launch,
 #: e^{-2 beta} (eq 3.30), is then 1 against 0.135 (at the text's 0.25, 3 % off).
 MKS_SHOWN_BETA = 1.0
@@ -391,13 +399,7 @@ def _launch_axes(launch: Launch) -> tuple[np.ndarray, np.ndarray]:
     return np.ravel(up), np.ravel(downrange)
 
 
-_RIGID_BODY = {
-    "6DOF": lambda launch: sixdof.simulate_6dof(launch),
-    "MLT": lambda launch: mlt.simulate_mlt(launch),
-}
-
-
-def fly(launch: Launch, engines=("3DOF", "MKS")) -> tuple[dict[str, Flown], list[str]]:
+def fly(launch: Launch, engines=ENGINES[:2]) -> tuple[dict[str, Flown], list[str]]:
     """Each of ``engines`` (:data:`ENGINES`; the 3DOF always, as the reference) flown on
     ``launch``, and the messages for the reader (in the controls' words): every validity
     warning the engines raise, whether the flight leaves the sensible atmosphere, and why an
@@ -406,16 +408,16 @@ def fly(launch: Launch, engines=("3DOF", "MKS")) -> tuple[dict[str, Flown], list
     messages: list[str] = []
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        three = threedof.simulate_3dof(launch, output_step_s=0.5)
-        flown["3DOF"] = _from_table("3DOF", three)
+        three = _REFERENCE.fly(launch, output_step_s=0.5)
+        flown[_REFERENCE.label] = _from_table(_REFERENCE.label, three)
         for engine in engines:
-            if engine == "3DOF":
+            if engine == _REFERENCE.label:
                 continue
             if engine not in ENGINES:
                 raise ValueError(f"engines must be among {', '.join(ENGINES)}; got {engine!r}")
             try:
                 if engine in _RIGID_BODY:
-                    flown[engine] = _from_table(engine, _RIGID_BODY[engine](launch))
+                    flown[engine] = _from_table(engine, _RIGID_BODY[engine].fly(launch))
                 else:
                     flown[engine] = _mks(engine, launch, three)
             except (ValueError, TypeError, ArithmeticError) as error:
@@ -438,7 +440,7 @@ def fly(launch: Launch, engines=("3DOF", "MKS")) -> tuple[dict[str, Flown], list
             f"MKS beta = {beta:.3f} > {mks.BETA_VALIDITY_LIMIT:g}: the text finds the solution "
             "inaccurate for such high-drag projectiles (Chapter 4 B)."
         )
-    apogee = flown["3DOF"].apogee_m
+    apogee = flown[_REFERENCE.label].apogee_m
     if not math.isfinite(apogee):
         messages.append(
             "The 3DOF reaches no apogee within its time limit: at this speed the round escapes "
@@ -605,7 +607,7 @@ class Explorer:
             "improved_mks": w.Checkbox(description=LABELS["improved_mks"], **layout),
         }
         self.rigid_body = w.Button(
-            description="Fly the 6DOF and MLT too", layout=w.Layout(width="380px")
+            description=f"Fly the {' and '.join(_RIGID_BODY)} too", layout=w.Layout(width="380px")
         )
         self.plot = w.Image(format="png", layout=w.Layout(max_width="100%"))
         self.summary = w.HTML(layout=w.Layout(width="100%"))
@@ -737,7 +739,7 @@ class Explorer:
     def update(self, _change=None) -> None:
         """Fly the launch the controls describe and show it; a message, never a traceback."""
         self.settings = self._read()
-        engines = ["3DOF", "MKS"]
+        engines = list(ENGINES[:2])
         if self.settings.improved_mks:
             engines.append("improved MKS")
             if not mks_improvement.calibration.cache_info().currsize:
@@ -745,7 +747,7 @@ class Explorer:
                     ["Fitting the improved MKS on its training launches (once, a few seconds)."]
                 )
         if self._rigid_body:
-            engines += ["6DOF", "MLT"]
+            engines += list(_RIGID_BODY)
         try:
             launch = launch_for(self.settings)
             flown, messages = fly(launch, engines)

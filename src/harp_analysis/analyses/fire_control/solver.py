@@ -68,7 +68,7 @@ GRID_POINTS = 16
 #: decays to e^-8 of its launch value and the closed form's constants cancel
 #: (mks.ModifiedKeplerSolution refuses them) long before beta reaches its validity limit 0.25.
 MAX_DECAY = 8.0
-#: Eq 3.32's time of flight: Gauss-Legendre points per interval of mks._time_to, within 0.12 us
+#: Eq 3.32's time of flight: Gauss-Legendre points per interval of mks.time_to, within 0.12 us
 #: of 4,000 equal intervals (50 um of the target's motion; 8 points: 1 ns, a third more work).
 TIME_ORDER = 6
 #: The search of the maximum range stops within this of its elevation (rad): the excess is
@@ -151,11 +151,11 @@ def _shot(gun, flags, elevation, bearing, target, work):
     for row, value in enumerate((speed, launch_elevation, beta, tau, earth.RADIUS_M, drive, decay)):
         arguments[row, 0] = value
     a = arguments
-    if mks._solve(a[0], a[1], a[2], a[3], a[4], a[5], a[6], table, escapes) >= 0:
+    if mks.solve_constants(a[0], a[1], a[2], a[3], a[4], a[5], a[6], table, escapes) >= 0:
         return NOT_USABLE, nan, nan, nan, nan, beta, nan
     if escapes[0]:
         return ESCAPES, nan, nan, nan, nan, beta, nan
-    if mks._apogees(table, a[3], a[4], escapes, angles[0:1], angles[1:2]) >= 0:
+    if mks.find_apogees(table, a[3], a[4], escapes, angles[0:1], angles[1:2]) >= 0:
         return NOT_USABLE, nan, nan, nan, nan, beta, nan
     apogee_angle, apogee_altitude = angles[0], angles[1]
     radius = target[3]
@@ -163,21 +163,21 @@ def _shot(gun, flags, elevation, bearing, target, work):
         return BELOW, nan, nan, nan, nan, beta, apogee_altitude
     descending = target[8] > 0
     if descending:
-        if mks._impacts(table, a[3], a[4], escapes, angles[0:1], angles[2:3]) >= 0:
+        if mks.find_impacts(table, a[3], a[4], escapes, angles[0:1], angles[2:3]) >= 0:
             return NOT_USABLE, nan, nan, nan, nan, beta, apogee_altitude
         low, high, sign = apogee_angle, angles[2], 1.0
     else:
         low, high, sign = 0.0, apogee_angle, -1.0
     if not high > low > -1.0 or not apogee_angle > 0.0:  # no digits: grazing, or vertical
         return NOT_USABLE, nan, nan, nan, nan, beta, apogee_altitude
-    theta = mks._crossing(table, 0, tau, low, high, 1.0 / radius, sign)
-    time = mks._time_to(table, 0, tau, beta * decay, theta, _NODES, _WEIGHTS)
+    theta = mks.crossing_angle(table, 0, tau, low, high, 1.0 / radius, sign)
+    time = mks.time_to(table, 0, tau, beta * decay, theta, _NODES, _WEIGHTS)
     # the crossing point in the inertial frame of t = 0, then turned back into the Earth's
     up = launch_axes(gun[_LATITUDE], 0.0, 0.0)[0]
     climb = dot(velocity, up)
     along = (velocity[0] - climb * up[0], velocity[1] - climb * up[1], velocity[2] - climb * up[2])
     size = math.sqrt(dot(along, along))
-    r = 1.0 / mks._point(table, 0, tau, theta)[0]
+    r = 1.0 / mks.point(table, 0, tau, theta)[0]
     c, s = r * math.cos(theta), r * math.sin(theta) / size
     x, y = turned_about_axis(
         c * up[0] + s * along[0], c * up[1] + s * along[1], -gun[_OMEGA] * time
@@ -454,7 +454,7 @@ def _solve_all(
     gun, flags, n_terms, latitude, longitude, altitude, descending, roots, status, search
 ):
     """Every target's roots (:func:`solve`); returns the MKS trajectories of each."""
-    table = np.empty((mks._AMPLITUDES + n_terms, 1))
+    table = np.empty((mks.AMPLITUDES_ROW + n_terms, 1))
     escapes = np.empty(1, dtype=np.bool_)
     arguments = np.empty((7, 1))
     angles = np.empty(3)
