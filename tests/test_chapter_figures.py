@@ -1,17 +1,20 @@
 """The figures of Chapters 2-4 (notebooks 01-04), each drawn by one function of
 reporting/figures: every one 6.5 in wide with the axes and the series its dissertation figure
 has. The atmosphere's figures are drawn from the models themselves and must pass the figure lint
-as saved."""
+as saved; the reference trajectories' from constructed flights (the notebooks draw and lint the
+real ones, and tests/test_figure_images.py holds them to the committed images)."""
 
 import matplotlib
 
 matplotlib.use("agg")
 
 import numpy as np
+import pandas as pd
 import pytest
 
+from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2
 from harp_analysis.reporting import plotting
-from harp_analysis.reporting.figures import atmosphere
+from harp_analysis.reporting.figures import atmosphere, reference_trajectories
 from harp_analysis.reporting.plotting import FULL_WIDTH_IN
 
 
@@ -50,3 +53,75 @@ def test_r_squared_flatness_marks_the_texts_k_and_r_squared():
     (ax,) = _drawn(atmosphere.draw_r_squared_flatness(np.linspace(0.11, 0.12, 5)), 1)
     assert _labels(ax) == ["0-20 km", "0-50 km", "0-100 km", "text's $k$", "text's $R^2$"]
     assert all(len(line.get_xdata()) == 5 for line in ax.get_lines()[:3])
+
+
+def _flight(name, model):
+    """A constructed flight of projectile ``name`` by ``model``: up to 40 km at 50 s; HP's MLT
+    swerves kilometres, the others metres; the drag coefficient bumps at 60 s."""
+    launch = HP_CHAPTER_2 if name == "HP" else LP_CHAPTER_2
+    t = np.linspace(0.0, 100.0, 201)
+    altitude = 40e3 * (1.0 - ((t - 50.0) / 50.0) ** 2)
+    swerve = {"3DOF": 0.0, "6DOF": 2.0 + (name == "LP"), "MLT": 3.0 if name == "LP" else 50.0}
+    flight = pd.DataFrame(
+        {"time_s": t, "ground_range_m": 1000.0 * t, "altitude_m": altitude,
+         "cross_range_m": 5.0 * t + swerve[model] * t, "speed_m_s": 2000.0 - 10.0 * t,
+         "angle_of_attack_rad": 0.002 * t, "mach": 6.0 - 0.03 * t,
+         "drag_coefficient": 0.3 + np.exp(-(((t - 60.0) / 5.0) ** 2)),
+         "specific_angular_momentum_m2_s": 1e8 - 1e5 * t,
+         "drag_to_gravity": 20.0 * np.exp(-altitude / 5e3)}
+    )  # fmt: skip
+    flight.attrs = {"apogee_time_s": 50.0, "launch": launch}
+    return flight
+
+
+FLIGHTS = {(name, model): _flight(name, model)
+           for model in ("3DOF", "6DOF", "MLT") for name in ("HP", "LP")}  # fmt: skip
+SPHERICAL = {name: _flight(name, "6DOF") for name in ("HP", "LP")}
+EVERY_FLIGHT = ["HP 3DOF", "LP 3DOF", "HP 6DOF", "LP 6DOF", "HP MLT", "LP MLT"]
+TRUE_ALTITUDE = "6DOF, air at the true altitude"
+
+
+@pytest.mark.parametrize(
+    ("draw", "arguments", "labels"),
+    [
+        ("draw_cross_range", (FLIGHTS,), EVERY_FLIGHT),
+        ("draw_speed", (FLIGHTS, SPHERICAL), [*EVERY_FLIGHT, TRUE_ALTITUDE]),
+        ("draw_angle_of_attack", (FLIGHTS,), EVERY_FLIGHT[2:]),
+        ("draw_range_against_time", (FLIGHTS,), EVERY_FLIGHT),
+        ("draw_angular_momentum", (FLIGHTS, SPHERICAL), [*EVERY_FLIGHT[:4], TRUE_ALTITUDE]),
+    ],
+)
+def test_one_panel_figures_figs_2_3_to_2_6_and_2_10(draw, arguments, labels):
+    (ax,) = _drawn(getattr(reference_trajectories, draw)(*arguments), 1)
+    assert _labels(ax) == labels
+
+
+def test_altitude_with_drag_ratio_fig_2_2_marks_each_crossing():
+    (ax,) = _drawn(reference_trajectories.draw_altitude_with_drag_ratio(FLIGHTS), 1)
+    assert _labels(ax) == EVERY_FLIGHT
+    marks = [text.get_text() for text in ax.texts]  # N falls to 0.007 at the 40 km apogee
+    assert marks == 2 * [f"$N$ = {ratio:g}" for ratio in (10, 1, 0.1, 0.01)]
+
+
+def test_swerve_fig_2_7_marks_hp_mlt_off_the_detail_scale():
+    top, bottom = _drawn(reference_trajectories.draw_swerve(FLIGHTS), 2)
+    assert _labels(top) == ["HP 6DOF", "LP 6DOF", "HP MLT", "LP MLT"]
+    assert [text.get_text() for text in bottom.texts] == ["HP MLT: off scale (upper panel)"]
+    assert bottom.get_ylim()[1] < top.get_ylim()[1]
+
+
+def test_mach_and_drag_fig_2_8_marks_the_yaw_drag():
+    top, bottom = _drawn(reference_trajectories.draw_mach_and_drag(FLIGHTS, SPHERICAL), 2)
+    assert _labels(top) == [*EVERY_FLIGHT[:4], TRUE_ALTITUDE]
+    (note,) = bottom.texts
+    assert note.get_text().startswith("HP 6DOF: yaw drag") and note.xy[0] == pytest.approx(60.0)
+
+
+def test_lower_atmosphere_fig_2_9_draws_the_height_over_the_launch_line():
+    above, below = _drawn(reference_trajectories.draw_lower_atmosphere(FLIGHTS), 2)
+    assert _labels(above) == ["HP 3DOF", "HP 6DOF", "LP 3DOF", "LP 6DOF", "straight line at 50°"]
+    assert len(below.get_lines()) == 5  # the four flights and the line itself, at zero
+    x_km, height_m = below.get_lines()[0].get_data()
+    altitude_m = 40e3 * (1.0 - ((x_km - 50.0) / 50.0) ** 2)
+    assert x_km.max() < 50.0 and altitude_m.max() < 20e3  # the ascent below 20 km
+    assert np.allclose(height_m, altitude_m - np.tan(np.radians(50.0)) * x_km * 1e3)
