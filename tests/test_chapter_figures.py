@@ -1,8 +1,9 @@
 """The figures of Chapters 2-4 (notebooks 01-04), each drawn by one function of
 reporting/figures: every one 6.5 in wide with the axes and the series its dissertation figure
-has. The atmosphere's figures are drawn from the models themselves and must pass the figure lint
-as saved; the reference trajectories' from constructed flights (the notebooks draw and lint the
-real ones, and tests/test_figure_images.py holds them to the committed images)."""
+has. The atmosphere's and the Modified Kepler equation's figures are drawn from the package's own
+models and flights and must pass the figure lint as saved; the reference trajectories' from
+constructed flights (the notebooks draw and lint the real ones, and tests/test_figure_images.py
+holds every one to its committed image)."""
 
 import matplotlib
 
@@ -12,9 +13,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2
+from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2, baseline_chapter_4
 from harp_analysis.reporting import plotting
-from harp_analysis.reporting.figures import atmosphere, reference_trajectories
+from harp_analysis.reporting.figures import atmosphere, modified_kepler, reference_trajectories
 from harp_analysis.reporting.plotting import FULL_WIDTH_IN
 
 
@@ -125,3 +126,26 @@ def test_lower_atmosphere_fig_2_9_draws_the_height_over_the_launch_line():
     altitude_m = 40e3 * (1.0 - ((x_km - 50.0) / 50.0) ** 2)
     assert x_km.max() < 50.0 and altitude_m.max() < 20e3  # the ascent below 20 km
     assert np.allclose(height_m, altitude_m - np.tan(np.radians(50.0)) * x_km * 1e3)
+
+
+def test_polar_coordinates_fig_3_1():
+    whole, near = _drawn(modified_kepler.draw_polar_coordinates(baseline_chapter_4(45.0)), 2)
+    assert whole.get_title() == "(a) about the Earth's centre O"
+    assert _labels(near) == ["MKS, baseline at 45°"]
+    assert plotting.figure_defects(whole.figure) == []
+
+
+def test_straight_line_fig_3_3():
+    (ax,) = _drawn(modified_kepler.draw_straight_line(baseline_chapter_4(45.0)), 1)
+    assert _labels(ax) == ["3DOF", "MKS", r"$a = \theta\, r_0 \tan\phi_0$ (eq 3.16)"]
+    assert max(ax.get_lines()[0].get_ydata()) < 40.0  # the 3DOF's ascent below 40 km
+    assert plotting.figure_defects(ax.figure) == []
+
+
+def test_frequency_response_fig_3_4_marks_the_driving_rates():
+    with pytest.warns(UserWarning):  # HP's beta exceeds the MKS's validity, as in the text
+        (ax,) = _drawn(modified_kepler.draw_frequency_response(HP_CHAPTER_2), 1)
+    labels = _labels(ax)
+    assert labels[0] == r"linearised (eq 3.30), $\omega_n = 1$" and "eq 3.29" in labels[1]
+    assert [text.get_text() for text in ax.texts] == [r"$\tau$", r"$2\tau$", r"$3\tau$"]
+    assert plotting.figure_defects(ax.figure) == []

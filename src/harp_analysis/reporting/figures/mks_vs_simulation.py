@@ -1,6 +1,6 @@
-"""Drawing helpers of Chapters 3-4's figures (notebooks 03 and 04): the models side by side
+"""Drawing helpers of Chapter 4's figures (notebook 04): the models side by side
 (Figs 4.1-4.4), the MKS's error for the baseline cone at several elevations (Figs 4.11-4.18),
-direct labels and off-scale marks, and the sampling of Fig 3.4's undamped resonances.
+direct labels and off-scale marks.
 
 Every figure is :data:`~harp_analysis.reporting.plotting.FULL_WIDTH_IN` wide; what it needs said
 beyond its labels is in its registry caption (registry/figures.toml), never in a note around the
@@ -27,7 +27,6 @@ __all__ = [
     "mark_off_scale",
     "place_clear",
     "error_figure",
-    "resonance_grid",
 ]
 
 TOTAL_ERROR_LABEL = "total position error, eq 4.7 (km)"
@@ -147,19 +146,3 @@ def error_figure(elevations_deg, *, lower: str | None = None, **variant):
     axes[-1, 0].set_xlabel("range (km)")
     place_clear(fig, ax, labels)
     return fig
-
-
-def resonance_grid(omega, natural_frequencies, level: float) -> np.ndarray:
-    """The frequencies ``omega`` (rad/rad) with, for each of ``natural_frequencies``, the two
-    where the undamped response |1/(omega_n^2 - omega^2)| equals ``level`` and the two where it
-    is a million times more: a curve drawn through them reaches an axis topped at ``level`` at
-    every resonance, whatever the spacing of ``omega``, and leaves it there (the response is
-    unbounded at omega_n), instead of peaking at whatever height the nearest sample has."""
-    extra = []
-    for omega_n in np.atleast_1d(natural_frequencies):
-        for height in (level, 1e6 * level):
-            for sign in (-1.0, 1.0):
-                squared = omega_n**2 + sign / height
-                if squared > 0:
-                    extra.append(np.sqrt(squared))
-    return np.unique(np.concatenate([np.asarray(omega, dtype=float), extra]))
