@@ -9,14 +9,30 @@ import matplotlib
 
 matplotlib.use("agg")
 
+import warnings
+
+import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 import pytest
 
+from harp_analysis.analyses import comparisons
+from harp_analysis.foundation.validation import ModelValidityWarning
 from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2, baseline_chapter_4
 from harp_analysis.reporting import plotting
-from harp_analysis.reporting.figures import atmosphere, modified_kepler, reference_trajectories
+from harp_analysis.reporting.figures import (
+    atmosphere,
+    mks_vs_simulation,
+    modified_kepler,
+    reference_trajectories,
+)
 from harp_analysis.reporting.plotting import FULL_WIDTH_IN
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    yield
+    plt.close("all")
 
 
 def _labels(ax):
@@ -149,3 +165,89 @@ def test_frequency_response_fig_3_4_marks_the_driving_rates():
     assert labels[0] == r"linearised (eq 3.30), $\omega_n = 1$" and "eq 3.29" in labels[1]
     assert [text.get_text() for text in ax.texts] == [r"$\tau$", r"$2\tau$", r"$3\tau$"]
     assert plotting.figure_defects(ax.figure) == []
+
+
+HP_50 = comparisons.chapter_4_launch("HP", 50.0)
+ELEVATIONS = (30.0, 45.0, 65.0, 85.0)
+ELEVATION_NAMES = ["30 deg", "45 deg", "65 deg", "85 deg"]
+
+
+@pytest.fixture
+def quiet_mks():
+    """HP's beta exceeds the MKS's validity, as the text knows: the warning is not the test's."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelValidityWarning)
+        yield
+
+
+def test_error_geometry_fig_4_5(quiet_mks):
+    (ax,) = _drawn(mks_vs_simulation.draw_error_geometry(HP_50), 1)
+    assert ax.get_title().startswith("HP at apogee")
+    labels = _labels(ax)
+    assert labels[0].startswith(r"MKS at $\theta_i$") and labels[1:] == [
+        r"3DOF at $t_i$",
+        r"MKS at $t_i$",
+    ]
+    notes = [text.get_text() for text in ax.texts if text.get_text()]
+    assert [note.split(" = ")[0] for note in notes] == [
+        r"$\varepsilon_r$",
+        r"$\varepsilon_\theta$",
+        "total, eq 4.7",
+    ]
+    assert plotting.figure_defects(ax.figure) == []
+
+
+def test_error_by_terms_fig_4_6(quiet_mks):
+    left, right = _drawn(mks_vs_simulation.draw_error_by_terms(HP_50), 2)
+    assert _labels(left) == ["1 term", "2 terms", "3 terms", "4 terms", "5 terms"]
+    assert _labels(right) == ["eq 4.7, geometric", "eqs 4.6-4.7, printed", "direct, equal time"]
+    assert left.get_ylim() == right.get_ylim() == (0.0, 8.0)
+    assert plotting.figure_defects(left.figure) == []
+
+
+def _effort_table():
+    methods = ["6DOF", "3DOF", "MLT", "MKS (3 terms)", "MKS, a million launches at once"]
+    return pd.DataFrame(
+        {"flops": [1e9, 1e7, 1e6, 300.0, 300.0], "seconds": [2.0, 0.1, 0.05, 1e-5, 1e-7],
+         "apogee_difference_m": [0.0, 50.0, 200.0, 3000.0, 3000.0]},
+        index=pd.Index(methods, name="method"),
+    )  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("draw", "points"), [("draw_effort", 4), ("draw_wall_time", 5)], ids=["fig_4_7", "wall_time"]
+)
+def test_effort_puts_the_reference_in_a_slot_of_its_own(draw, points):
+    (ax,) = _drawn(getattr(mks_vs_simulation, draw)(_effort_table()), 1)
+    assert len(ax.get_lines()) == points
+    assert ax.texts[0].get_text() == "6DOF: reference (0 m)"
+    assert ax.get_lines()[0].get_xdata()[0] == 0.15  # left of the break, ticked "0"
+    assert ax.xaxis.get_major_formatter()(0.15, 0) == "0"
+
+
+def test_three_projectiles_fig_4_8():
+    (ax,) = _drawn(mks_vs_simulation.draw_three_projectiles(50.0), 1)
+    assert _labels(ax) == [f"{name}, {model}" for name in ("HP", "LP", "baseline")
+                           for model in ("3DOF", "MKS")]  # fmt: skip
+
+
+def test_cone_drag_fig_4_9():
+    (ax,) = _drawn(mks_vs_simulation.draw_cone_drag(), 1)
+    labels = _labels(ax)
+    assert labels[2].startswith("eq 4.8 (text)") and labels[3].startswith("fit: ")
+    assert plotting.figure_defects(ax.figure) == []
+
+
+@pytest.mark.parametrize(
+    "draw",
+    ["draw_baseline_trajectories", "draw_straight_lines", "draw_drag_coefficient_against_altitude"],
+)
+def test_baseline_elevations_figs_4_10_4_14_4_16_label_every_curve(draw):
+    (ax,) = _drawn(getattr(mks_vs_simulation, draw)(ELEVATIONS), 1)
+    assert [text.get_text() for text in ax.texts if "deg" in text.get_text()] == ELEVATION_NAMES
+    assert plotting.figure_defects(ax.figure) == []
+
+
+def test_asymptotic_momentum_error_fig_4_12():
+    (ax,) = _drawn(mks_vs_simulation.draw_asymptotic_momentum_error((30.0, 60.0)), 1)
+    assert list(ax.get_lines()[0].get_xdata()) == [30.0, 60.0]
