@@ -215,3 +215,12 @@ def test_solve_for_launch_is_solve_of_the_launch_mks(hp50, form):
     assert other.apogee_altitude() != pytest.approx(direct.apogee_altitude(), rel=1e-6)
     with pytest.raises(TypeError, match="Launch"):
         nk.solve_for_launch(HP, form)
+
+
+@pytest.mark.parametrize("n_terms", [1, 3, 6])
+def test_the_closed_form_solves_eq_3_30_to_rounding(n_terms):
+    """Notebook 03's derivation check (comparisons.series_residual): u'' + u equals the driving
+    function truncated to the solution's own terms, everywhere from launch to impact."""
+    from harp_analysis.analyses import comparisons
+
+    assert comparisons.series_residual(mks.for_launch(HP_50, n_terms=n_terms, warn=False)) < 1e-12

@@ -2,7 +2,8 @@
 
 nbmake executes every notebook as committed (``make test``); here notebook 04 runs with changed
 parameters, and a last cell checks that the 3DOF, 6DOF, MLT and MKS all flew the changed launch
-and that the headings name it. No notebook silences the models' validity warnings.
+and that the headings name it. No notebook silences the models' validity warnings, draws, or
+defines a function of its own.
 """
 
 import os
@@ -84,6 +85,26 @@ def test_no_notebook_silences_warnings(path):
     silencing = re.compile(r"(simplefilter|filterwarnings)\(\s*[\"']ignore")
     for cell in nbformat.read(path, as_version=4).cells:
         assert cell.cell_type != "code" or not silencing.search(cell.source), cell.source
+
+
+#: What drawing looks like in a cell: matplotlib itself, or an axes' or the house style's calls.
+DRAWING = re.compile(
+    r"\bmatplotlib\b|\bplt\.|\bnew_figure\(|"
+    r"\.(plot|semilogy|loglog|bar|fill|axhline|axvline|annotate|set_[xy]label|set_[xy]lim|legend)\("
+)
+#: A function, class or named lambda of the notebook's own.
+DEFINING = re.compile(r"^\s*(def|class)\s|^\w+\s*=\s*lambda\b", re.MULTILINE)
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
+def test_no_notebook_draws_or_defines_functions(path):
+    """Physics and drawing live in the package: a notebook calls a figure function of
+    harp_analysis.reporting.figures and saves what it returns, and defines no helper of its own
+    (issue 27)."""
+    for cell in nbformat.read(path, as_version=4).cells:
+        if cell.cell_type == "code":
+            assert not DRAWING.search(cell.source), cell.source
+            assert not DEFINING.search(cell.source), cell.source
 
 
 def test_figures_go_to_a_scratch_folder_unless_asked(monkeypatch):

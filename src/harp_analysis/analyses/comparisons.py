@@ -37,6 +37,7 @@ __all__ = [
     "max_error_change_km",
     "elevation_error_ratio",
     "initial_natural_frequency",
+    "series_residual",
     "linearisation_apogee_change_km",
     "response_ratio",
     "radius_change_below",
@@ -223,6 +224,16 @@ def elevation_error_ratio(high_deg: float = 85.0, low_deg: float = 45.0) -> floa
 def initial_natural_frequency(projectile: str = "HP", elevation_deg: float = 50.0) -> float:
     """Eq 3.29's natural frequency at launch (rad/rad), Chapter 3 C's "27 rad/rad" for HP."""
     return nonlinear_kepler.initial_natural_frequency(case(projectile, elevation_deg)[1])
+
+
+def series_residual(solution: mks.ModifiedKeplerSolution, points: int = 400) -> float:
+    """How closely ``solution``'s closed form solves eq 3.30: the largest |u'' + u - f(theta)|
+    over ``points`` angles from launch to impact, f its driving function truncated to its own
+    number of terms (eq 3.24), relative to c3."""
+    theta = np.linspace(0, solution.impact_angle, points)
+    forcing = nonlinear_kepler.driving_function(solution, theta, solution.n_terms)
+    residual = solution.d2u_dtheta2(theta) + solution.u(theta) - forcing
+    return float(np.abs(residual).max() / solution.c3.item())
 
 
 def linearisation_apogee_change_km(

@@ -35,14 +35,19 @@ __all__ = [
     "max_distance_m",
     "max_position_difference_km",
     "swerve",
+    "yaw_drag_peak",
     "angle_of_attack_at_apogee_deg",
     "launch_drag_to_gravity",
     "drag_to_gravity_crossing_altitude_km",
+    "drag_to_gravity_crossings",
     "max_drag_to_gravity_above",
     "angular_momentum_loss_share_below",
     "angular_momentum_change_above",
     "launch_energy_mj",
     "ascent",
+    "ascent_below",
+    "straight_line_altitude_m",
+    "height_over_straight_line_m",
     "loss_share_below",
 ]
 
@@ -144,6 +149,27 @@ def ascent(flight: pd.DataFrame) -> pd.DataFrame:
     return flight[flight.time_s <= flight.attrs["apogee_time_s"]]
 
 
+def ascent_below(flight: pd.DataFrame, altitude_m: float) -> pd.DataFrame:
+    """The rows of ``flight``'s ascent below ``altitude_m``: the lower atmosphere of Figs 2.9,
+    3.3, 4.14 and 4.16."""
+    rising = ascent(flight)
+    return rising[rising.altitude_m < altitude_m]
+
+
+def straight_line_altitude_m(ground_range_m, elevation_rad: float):
+    """Altitude (m) of the straight launch line at ``ground_range_m``: eq 3.16's
+    a = theta r0 tan(phi0), with the angular range theta = ground range / r0."""
+    return ground_range_m * np.tan(elevation_rad)
+
+
+def height_over_straight_line_m(flight: pd.DataFrame) -> pd.Series:
+    """``flight``'s altitude minus its straight launch line's (:func:`straight_line_altitude_m`
+    at its launch elevation) at the same range (m; negative below the line): Fig 2.9's lower
+    panel."""
+    elevation_rad = flight.attrs["launch"].elevation_rad
+    return flight.altitude_m - straight_line_altitude_m(flight.ground_range_m, elevation_rad)
+
+
 def loss_share_below(flight: pd.DataFrame, altitude_km: float = 20.0) -> float:
     """Share of ``flight``'s ascent loss of specific angular momentum spent below
     ``altitude_km``."""
@@ -159,12 +185,28 @@ def drag_to_gravity_crossing_altitude_km(projectile: str, ratio: float = 1.0) ->
     "altitude where drag = weight" is ``ratio = 1``)."""
     ratio = _positive(ratio, "ratio")
     rising = ascent(reference_3dof(projectile, cross_wind_m_s=0.0))
-    below = np.flatnonzero(rising.drag_to_gravity.to_numpy() < ratio)
-    if below.size == 0 or below[0] == 0:
+    i = _first_below(rising, ratio)
+    if i == 0:
         return float("nan")
-    i = below[0]
     n, a = rising.drag_to_gravity.to_numpy(), rising.altitude_m.to_numpy()
     return float(np.interp(np.log(ratio), np.log(n[[i, i - 1]]), a[[i, i - 1]]) / 1e3)
+
+
+def _first_below(rising: pd.DataFrame, ratio: float) -> int:
+    """Position of the first row of the ascent ``rising`` where N = drag/gravity is below
+    ``ratio``; 0 if it never is, or already is at the muzzle (no crossing)."""
+    below = np.flatnonzero(rising.drag_to_gravity.to_numpy() < ratio)
+    return int(below[0]) if below.size else 0
+
+
+def drag_to_gravity_crossings(flight: pd.DataFrame, ratios) -> pd.DataFrame:
+    """The first row of ``flight``'s ascent where N = drag/gravity has fallen below each of
+    ``ratios`` (Fig 2.2's marks), indexed by the ratio; a ratio N does not cross on the way up
+    is left out."""
+    rising = ascent(flight)
+    rows = {ratio: _first_below(rising, _positive(ratio, "ratio")) for ratio in ratios}
+    crossed = {ratio: i for ratio, i in rows.items() if i}
+    return rising.iloc[list(crossed.values())].set_axis(pd.Index(list(crossed), name="ratio"))
 
 
 def max_drag_to_gravity_above(projectile: str, altitude_km: float = 40.0) -> float:
@@ -264,6 +306,14 @@ def swerve(rigid_body: pd.DataFrame, three_dof: pd.DataFrame) -> pd.DataFrame:
             "swerve_m": six.cross_range_m - cross3,
         }
     )
+
+
+def yaw_drag_peak(flight: pd.DataFrame) -> pd.Series:
+    """The row of a 6DOF ``flight`` where its drag coefficient peaks before the rise near impact
+    (in the first 90 % of its range): for HP, the yaw drag of the large angle of attack past
+    apogee (Fig 2.8)."""
+    early = flight[flight.ground_range_m < 0.9 * flight.ground_range_m.iloc[-1]]
+    return flight.loc[early.drag_coefficient.idxmax()]
 
 
 def angle_of_attack_at_apogee_deg(projectile: str) -> float:

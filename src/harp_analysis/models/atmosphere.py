@@ -37,6 +37,7 @@ __all__ = [
     "SOUND_SQUARED_PER_KELVIN",
     "SEA_LEVEL_DENSITY_KG_M3",
     "TEXT_DECAY_CONSTANT_PER_M",
+    "TEXT_R_SQUARED",
     "AtmosphereModel",
     "get_atmosphere",
     "ATMOSPHERE_NAMES",
@@ -63,6 +64,7 @@ __all__ = [
 
 SEA_LEVEL_DENSITY_KG_M3 = 1.225  # US Standard Atmosphere 1976; Chapter 3 B's rho0
 TEXT_DECAY_CONSTANT_PER_M = 0.117e-3  # Chapter 3 B: k = 0.117 /km
+TEXT_R_SQUARED = 0.994  # Chapter 3 B: the "optimized coefficient of determination" of that k
 _HEAT_CAPACITY_RATIO = 1.4
 #: The 1976 standard's specific gas constant of dry air (J/(kg K)).
 DRY_AIR_GAS_CONSTANT_J_KG_K = 287.05287

@@ -1,10 +1,10 @@
-"""Chapters 3-4's drawing helpers: Fig 3.4's resonances drawn to the response's height."""
+"""Chapter 3's drawing helpers: Fig 3.4's resonances drawn to the response's height."""
 
 import numpy as np
 import pytest
 
 from harp_analysis.engines import nonlinear_kepler
-from harp_analysis.reporting.figures import mks_vs_simulation
+from harp_analysis.reporting.figures import modified_kepler
 
 COARSE = np.logspace(-1, 4, 600)  # Fig 3.4's frequencies before the resonances are added
 TOP = 1e2
@@ -15,7 +15,7 @@ def test_resonance_grid_reaches_the_axis_top_at_the_resonance(omega_n):
     """|1/(omega_n^2 - omega^2)| = TOP at omega = sqrt(omega_n^2 -+ 1/TOP) (closed form); the
     grid holds both, so the drawn curve crosses the axis's top there and rises beyond it (the
     undamped response is unbounded at omega_n), whatever the spacing of the coarse grid."""
-    grid = mks_vs_simulation.resonance_grid(COARSE, omega_n, TOP)
+    grid = modified_kepler.resonance_grid(COARSE, omega_n, TOP)
     response = nonlinear_kepler.frequency_response(grid, omega_n)
     for crossing in (np.sqrt(omega_n**2 - 1 / TOP), np.sqrt(omega_n**2 + 1 / TOP)):
         (at,) = np.flatnonzero(np.isclose(grid, crossing, rtol=1e-14, atol=0))
