@@ -470,6 +470,13 @@ class LaunchCorrection:
     beta: np.ndarray  # eq 6.11
     tau: np.ndarray  # eq 6.12
     initial_angular_momentum_m2_s: np.ndarray  # eq 6.13
+    # what the corrections were computed from, beside the gun's speed and angles: what
+    # re-lays the same gun at other angles (the fire-control solver) or flies it needs
+    drag_area_m2: np.ndarray  # Cd0 A
+    mass_kg: np.ndarray
+    surface_density_kg_m3: np.ndarray  # rho0, eq 3.11's air at the gun
+    decay_constant_per_m: float  # k of eq 3.11
+    rotation_rate_rad_s: float
 
     @property
     def drive_scale(self) -> np.ndarray:
@@ -578,6 +585,11 @@ def launch_correction(
         beta,
         tau,
         momentum,
+        np.array(drag_area),  # copies: not views of the caller's arrays
+        np.array(mass),
+        np.array(density),
+        decay_constant_per_m,
+        rotation_rate_rad_s,
     )
 
 
@@ -621,13 +633,24 @@ def eci_solution(
 
 
 def correction_for_launch(
-    launch: Launch | Launches, model: str | EciModel = CONSISTENT
+    launch: Launch | Launches,
+    model: str | EciModel = CONSISTENT,
+    *,
+    mass_kg=None,
+    drag_area_m2=None,
+    surface_density_kg_m3=None,
 ) -> LaunchCorrection:
     """:func:`launch_correction` of a :class:`~harp_analysis.models.launch.Launch` (or of
     :class:`~harp_analysis.models.launch.Launches` sharing one Earth rotation, each launch a
     column): its speed, elevation, bearing and latitude, Cd0 A at the launch Mach, its mass, its
-    air's density at the gun and its Earth rotation. The ECI MKS is drag-only: a wind is ignored
-    with a warning; it launches from the Earth's surface (r0 = R)."""
+    air's density at the gun (:func:`mks.gun_density_kg_m3`) and its Earth rotation. The ECI
+    MKS is drag-only: a wind is ignored with a warning; it launches from the Earth's surface
+    (r0 = R).
+
+    ``mass_kg``, ``drag_area_m2`` (Cd0 A, m^2) and ``surface_density_kg_m3`` (rho0 at the gun)
+    replace what the launch's projectile and air give, each a number or an array broadcasting
+    with the launches: the rounds of one gun whose masses, drag or air differ (HARP's rounds,
+    each with its own mass; a drag area being fitted; a site's measured air)."""
     if not isinstance(launch, Launch | Launches):
         raise TypeError(f"launch must be a Launch or Launches; got {type(launch).__name__}")
     launch.require_zero("ECI MKS", "site_altitude_m", reason="it launches from r0 = R")
@@ -645,9 +668,17 @@ def correction_for_launch(
         launch.elevation_rad,
         launch.bearing_rad,
         launch.latitude_rad,
-        drag_area_m2=launch.launch_drag_coefficient * projectile.reference_area_m2,
-        mass_kg=projectile.mass_kg,
-        surface_density_kg_m3=mks.gun_density_kg_m3(launch),
+        drag_area_m2=(
+            launch.launch_drag_coefficient * projectile.reference_area_m2
+            if drag_area_m2 is None
+            else drag_area_m2
+        ),
+        mass_kg=projectile.mass_kg if mass_kg is None else mass_kg,
+        surface_density_kg_m3=(
+            mks.gun_density_kg_m3(launch)
+            if surface_density_kg_m3 is None
+            else surface_density_kg_m3
+        ),
         rotation_rate_rad_s=rotation,
         model=model,
     )
@@ -687,16 +718,23 @@ def site_surface_speed_km_s(site: str) -> float:
     return float(np.linalg.norm(surface_velocity(get_site(site).latitude_rad))) / 1e3
 
 
+def _flight_plane(launch: LaunchCorrection, latitude_rad: float) -> tuple[np.ndarray, np.ndarray]:
+    """The plane of a single-launch ECI MKS in the inertial frame at longitude 0: unit vectors
+    (3,) up at the launch point and along the launch velocity's horizontal part."""
+    up = np.ravel(launch_frame(latitude_rad, 0.0, 0.0)[0])
+    velocity = np.ravel(launch.velocity_m_s)
+    along = velocity - (velocity @ up) * up
+    along /= np.linalg.norm(along)
+    return up, along
+
+
 def inertial_positions(
     solution: mks.ModifiedKeplerSolution, launch: LaunchCorrection, latitude_rad: float, theta_rad
 ) -> np.ndarray:
     """Positions (n, 3) of a single-launch ECI MKS at angular ranges ``theta_rad``: r(theta)
     in the plane of the launch point's radius and the corrected velocity's horizontal part,
     in the inertial frame of :func:`trajectory.launch_frame` at longitude 0 and time zero."""
-    up = np.ravel(launch_frame(latitude_rad, 0.0, 0.0)[0])
-    velocity = np.ravel(launch.velocity_m_s)
-    along = velocity - (velocity @ up) * up
-    along /= np.linalg.norm(along)
+    up, along = _flight_plane(launch, latitude_rad)
     theta = np.asarray(theta_rad, dtype=float)
     radius = np.ravel(solution.radius(theta))
     return radius[:, None] * (np.cos(theta)[:, None] * up + np.sin(theta)[:, None] * along)
