@@ -43,6 +43,7 @@ _API = {
     "simulate_6dof": "engines.sixdof",
     "simulate_mlt": "engines.mlt",
     "simulate_mks": "engines.mks",
+    "simulate_eci_mks": "engines.eci",
     "simulate_appendix_a": "engines.appendix_a",
     # fire control
     "TargetPoint": "analyses.fire_control.firing",
@@ -58,6 +59,7 @@ __all__ = ["__version__", *_API]
 if TYPE_CHECKING:  # for type checkers and editors; at run time each name is imported lazily
     from .analyses.fire_control.firing import TargetPoint, destination, firing_solutions
     from .engines.appendix_a import simulate_appendix_a
+    from .engines.eci import simulate_eci_mks
     from .engines.mks import simulate_mks
     from .engines.mlt import simulate_mlt
     from .engines.sixdof import simulate_6dof
