@@ -40,7 +40,6 @@ from ...foundation.validation import (
     finite_scalar,
     real_number,
 )
-from ...models.atmosphere import TEXT_DECAY_CONSTANT_PER_M
 from ...models.launch import Launch, Launches
 from ...models.projectiles import HP
 from ...models.sites import BARBADOS
@@ -205,20 +204,23 @@ class Verification:
 
 
 class _Gun:
-    """A gun as the compiled solver reads it (:mod:`.firing_solver`): speed, latitude, Cd0 A,
-    mass, eq 3.11's rho0 at the gun, k and the Earth's rotation, and the ECI model's flags."""
+    """A gun as the compiled solver reads it (:mod:`.firing_solver`): speed, latitude, and what
+    its ECI correction (:func:`eci.correction_for_launch`) makes of its projectile and air:
+    Cd0 A, mass, eq 3.11's rho0 at the gun, k and the Earth's rotation; and the ECI model's
+    flags. The solver lays the gun at its own elevations and bearings."""
 
     def __init__(self, gun: Launch, model: eci.EciModel = eci.CONSISTENT):
         self.launch = gun
+        laid = eci.correction_for_launch(gun, model)
         self.numbers = np.array(
             [
                 gun.speed_m_s,
                 gun.latitude_rad,
-                gun.launch_drag_coefficient * gun.projectile.reference_area_m2,
-                gun.projectile.mass_kg,
-                mks.gun_density_kg_m3(gun),
-                TEXT_DECAY_CONSTANT_PER_M,
-                gun.rotation_rate_rad_s,
+                laid.drag_area_m2,
+                laid.mass_kg,
+                laid.surface_density_kg_m3,
+                laid.decay_constant_per_m,
+                laid.rotation_rate_rad_s,
             ]
         )
         self.flags = (*model.flags, model.decay == "consistent")
@@ -463,7 +465,6 @@ def firing_solutions(gun, targets, *, bearing_limits_deg=None, branch="descendin
     points, single = _check_targets(targets)
     branch = check_choice(branch, "branch", BRANCHES)
     limits = _check_bearing_limits(bearing_limits_deg)
-    gun.warn_ignored("ECI MKS", "cross_wind_m_s", "head_wind_m_s", reason="it has no wind")
     results = _solutions(gun, points, branch, limits)
     return results[0] if single else results
 
