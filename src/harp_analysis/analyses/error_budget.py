@@ -246,21 +246,16 @@ def model_error(launch: Launch) -> pd.Series:
     3DOF's apogee time (the distance between the two positions at the same time, Chapter 5 C's
     measure), each from the nominal flight of :func:`nominal`."""
     reference, apogee_time, _ = nominal(_check_launch(launch))
-    correction = eci.correction_for_launch(launch)
-    solution = eci.solution_for(correction, warn=False)
-    impact_angle = float(solution.impact_angle)
-    grid = np.linspace(0.0, impact_angle, 4001)
-    times = solution.time(grid)
-    angles = np.array([impact_angle, np.interp(apogee_time, times, grid)])
-    inertial = eci.inertial_positions(solution, correction, launch.latitude_rad, angles).T
-    moments = np.array([float(np.ravel(times)[-1]), apogee_time])
-    turned = math.radians(launch.longitude_deg) - launch.rotation_rate_rad_s * moments
-    fixed = rotate_about_axis(inertial, turned).T
+    flight = eci.simulate_eci_mks(launch, times_s=[apogee_time], warn=False)
+    # the rows at the 3DOF's apogee time and at the impact, turned into the Earth's axes
+    moments = flight.time_s.to_numpy()
+    inertial = flight[["x_m", "y_m", "z_m"]].to_numpy().T
+    fixed = rotate_about_axis(inertial, -launch.rotation_rate_rad_s * moments).T
     return pd.Series(
         {
-            "apogee_m": abs(float(solution.apogee_altitude()) - reference[0]),
-            "impact_m": float(np.linalg.norm(fixed[0] - reference[1:4])),
-            "position_m": float(np.linalg.norm(fixed[1] - reference[4:7])),
+            "apogee_m": abs(flight.attrs["apogee_altitude_m"] - reference[0]),
+            "impact_m": float(np.linalg.norm(fixed[-1] - reference[1:4])),
+            "position_m": float(np.linalg.norm(fixed[0] - reference[4:7])),
         }
     )
 
