@@ -45,7 +45,6 @@ from ..foundation.sweeps import SAMPLING_METHODS, chunks, sample_chunk, sweep
 from ..foundation.validation import check_choice, check_range, real_number, whole_number
 from ..models.launch import Launch, Launches, baseline_chapter_4, chapter_2
 from ..models.projectiles import HP
-from ..models.sites import BARBADOS
 from ..models.trajectory import launch_frame, rotate_about_axis
 from .harp import apogees
 from .harp import confidence as harp_confidence
@@ -144,14 +143,8 @@ def martlet_at_barbados() -> Launch:
     rounds = apogees.appendix_rounds("barbados")
     rounds = rounds[~rounds.duplicate_of_earlier_row]
     speed = float(rounds.muzzle_speed_m_s.median())
-    return Launch(
-        apogees.martlet(float(rounds.mass_kg.median()), speed),
-        speed,
-        math.degrees(BARBADOS.elevation_rad),
-        bearing_deg=math.degrees(BARBADOS.gun_bearing_rad),
-        latitude_deg=math.degrees(BARBADOS.latitude_rad),
-        rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
-    )
+    martlet = apogees.martlet(float(rounds.mass_kg.median()), speed)
+    return apogees.gun_launch("barbados", martlet, speed)
 
 
 def representative_launches() -> dict[str, Launch]:

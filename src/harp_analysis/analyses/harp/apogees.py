@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import math
 from functools import cache
+from typing import overload
 
 import numpy as np
 import pandas as pd
@@ -94,20 +95,24 @@ _SPEED_HALF_UNIT_M_S = 5.0  # the appendices print Vo to 0.01 km/s
 _TOLERANCE_KM = 0.02  # the Cd0 A interval of Appendix E's Error column: every round this close
 
 
-def gun_launch(site: str, projectile: Projectile, speed_m_s) -> Launch | Launches:
+@overload
+def gun_launch(site: str, projectile: Projectile, speed_m_s: float) -> Launch: ...
+@overload
+def gun_launch(site: str, projectile: Projectile, speed_m_s: np.ndarray) -> Launches: ...
+def gun_launch(site, projectile, speed_m_s):
     """``projectile`` fired at ``speed_m_s`` (m/s; an array: one launch each) from ``site``'s
     gun as Chapter 6 lays it: 85 deg along the gun's bearing from the site's latitude, the
     Earth turning; eqs 2.1-2.2's air (the ECI MKS takes the site's, :func:`round_corrections`)."""
     launch_site = get_site(site)
-    fields = dict(
-        elevation_deg=math.degrees(launch_site.elevation_rad),
+    laid = Launches(
+        projectile,
+        speed_m_s,
+        math.degrees(launch_site.elevation_rad),
         bearing_deg=math.degrees(launch_site.gun_bearing_rad),
         latitude_deg=math.degrees(launch_site.latitude_rad),
         rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
     )
-    if np.ndim(speed_m_s) == 0:
-        return Launch(projectile, speed_m_s, **fields)
-    return Launches(projectile, speed_m_s, **fields)
+    return laid if np.ndim(speed_m_s) else laid[0]
 
 
 #: The projectile of :func:`round_corrections`'s launches: the Martlet 2C (Mod 2) by name only,
@@ -355,7 +360,7 @@ def martlet(
     return Projectile(
         f"Martlet 2C (Mod 2), {mass_kg:.4g} kg",
         mass_kg,
-        drag_area_m2(model) if own else drag_area,
+        drag_area_m2(model) if drag_area is None else drag_area,
         ExponentialDragLaw(0.0, 0.0, 1.0),
         launch_speed_m_s,
         "Ch. 6 and Appendices D-E: "

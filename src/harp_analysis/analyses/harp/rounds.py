@@ -99,7 +99,7 @@ def round_trajectory(
     launch_site, _, row = _round_row(site, round_number)
     name = eci.get_model(model).name
     area = apogees.drag_area_m2(model) if drag_area_m2 is None else drag_area_m2
-    speed = row.muzzle_speed_m_s
+    speed = float(row.muzzle_speed_m_s)
     launch = apogees.gun_launch(site, apogees.martlet(row.mass_kg, speed, name, area), speed)
     flight = eci.simulate_eci_mks(
         launch,
