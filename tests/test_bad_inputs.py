@@ -90,7 +90,7 @@ HP50 = HP_CHAPTER_2.but(cross_wind_m_s=0.0)
 GUN, TARGET = firing.barbados_case()
 # compiled before any probe runs: an alarm must never interrupt a compiler
 from harp_analysis.analyses.fire_control import solver
-for warm in (mks, mks_improved, firing_solver, sixdof, mlt):
+for warm in (mks, mks_improved, solver, sixdof, mlt):
     warm.warm_up()
 threedof.fly_3dof(B45), threedof.fly_3dof(HP_CHAPTER_2), threedof.fly_3dof(GUN)
 firing.firing_solutions(GUN, TARGET)
