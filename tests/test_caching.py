@@ -26,7 +26,7 @@ IMMUTABLE_RESULTS = {
     "compiled._imported_as_of": "a frozenset of paths",
     "compiled._digest": "a string",
     "explorer._typical_martlet_mass_kg": "a float",
-    "fire_control.raid_against_3dof_intercept": "a frozen RaidComparison of ints and floats",
+    "costs.raid_against_3dof_intercept": "a frozen RaidComparison of ints and floats",
     "apogees.fit_drag_area_to_errors": "a tuple of three floats",
     "apogees._drag_area_m2": "a float",
     "mks_improvement.calibration": "a frozen Calibration of one float",

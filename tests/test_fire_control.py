@@ -13,9 +13,9 @@ from harp_analysis.analyses.fire_control.firing import (
     FiringSolution,
     TargetPoint,
     firing_solutions,
-    raid_windows,
-    verify_with_3dof,
 )
+from harp_analysis.analyses.fire_control.intercepts import raid_windows
+from harp_analysis.analyses.fire_control.verification import verify_with_3dof
 from harp_analysis.engines import eci, kepler, threedof
 from harp_analysis.foundation import earth
 from harp_analysis.models.launch import Launch
@@ -287,14 +287,13 @@ def test_target_fields_are_refused_by_name(data, name):
 # --- part 2: Kepler targets and intercepts ------------------------------------------------------
 from scipy.integrate import solve_ivp  # noqa: E402
 
-from harp_analysis.analyses.fire_control.firing import (  # noqa: E402
-    BARBADOS_HP,
+from harp_analysis.analyses.fire_control.costs import shoot_3dof  # noqa: E402
+from harp_analysis.analyses.fire_control.firing import BARBADOS_HP, barbados_case  # noqa: E402
+from harp_analysis.analyses.fire_control.intercepts import (  # noqa: E402
     KeplerTarget,
-    barbados_case,
     intercept,
     intercept_window,
     raid,
-    shoot_3dof,
 )
 from harp_analysis.models.trajectory import rotate_about_axis  # noqa: E402
 
