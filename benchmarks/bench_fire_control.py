@@ -1,7 +1,7 @@
 """Fire control at raid scale (issue 24), timed and counted in one run.
 
 1. The counting case (HP from Barbados to the point 150 km down the gun's bearing at sea level,
-   :func:`harp_analysis.analyses.fire_control.firing.barbados_case`): one MKS firing solution (both
+   :func:`harp_analysis.analyses.fire_control.barbados_case`): one MKS firing solution (both
    roots), its 3DOF verification and refinement, and the 3DOF shooting alone from the drag-free
    conic.
 2. A raid: :func:`fire_control.raid`'s targets, each at 50 intercept times over its flight
@@ -31,7 +31,9 @@ import warnings
 import numpy as np
 from measure import agree, best_of, verdict
 
-from harp_analysis.analyses.fire_control import firing as fc
+from harp_analysis.analyses import fire_control as fc
+from harp_analysis.analyses.fire_control.costs import shoot_3dof
+from harp_analysis.analyses.fire_control.firing import BARBADOS_HP
 from harp_analysis.engines import threedof
 from harp_analysis.models.trajectory import TruncatedFlightWarning
 
@@ -43,7 +45,7 @@ def _counting_case(smoke: bool) -> None:
     solutions = fc.firing_solutions(gun, target)
     low = solutions.low
     refined = fc.verify_with_3dof(gun, target, low, tolerance_m=LANDED_M)
-    alone = fc.shoot_3dof(gun, target)
+    alone = shoot_3dof(gun, target)
     for shot in (refined, alone):
         agree("a 3DOF shooting's miss", shot.miss_m, LANDED_M)
     # the two 3DOF shootings land on one root: a metre at 150 km is 4e-4 deg
@@ -53,7 +55,7 @@ def _counting_case(smoke: bool) -> None:
     refine_s = best_of(
         lambda: fc.verify_with_3dof(gun, target, low, tolerance_m=LANDED_M), repeat=repeat
     )
-    alone_s = best_of(lambda: fc.shoot_3dof(gun, target), repeat=1 if smoke else 3)
+    alone_s = best_of(lambda: shoot_3dof(gun, target), repeat=1 if smoke else 3)
     print("HP from Barbados, 150 km at sea level (low root)")
     print(
         f"  MKS firing solution (both roots): {mks_s * 1e3:8.2f} ms, {solutions.mks_solves} MKS "
@@ -71,7 +73,7 @@ def _counting_case(smoke: bool) -> None:
 
 
 def _raid(smoke: bool, targets: int, times: int) -> None:
-    gun = fc.BARBADOS_HP
+    gun = BARBADOS_HP
     raid = fc.raid(gun, targets)
     fc.raid_windows(gun, raid[:1], count=2)  # the kernels loaded
     start = time.perf_counter()

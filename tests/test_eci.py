@@ -11,7 +11,7 @@ from harp_analysis.engines import eci, mks
 from harp_analysis.foundation import earth
 from harp_analysis.foundation.validation import ModelValidityWarning
 from harp_analysis.models.atmosphere import get_atmosphere
-from harp_analysis.models.launch import HP_CHAPTER_2, baseline_chapter_4
+from harp_analysis.models.launch import HP_CHAPTER_2, Launches, baseline_chapter_4
 from harp_analysis.models.projectiles import BASELINE
 from harp_analysis.models.sites import BARBADOS
 
@@ -147,9 +147,41 @@ def test_correction_for_launch_is_launch_correction_of_its_fields(model):
     assert by_launch.model is eci.get_model(model)
     for name in ("velocity_m_s", "misalignment_rad", "beta", "tau", "speed_ratio_squared"):
         assert getattr(by_launch, name) == pytest.approx(getattr(explicit, name), rel=1e-12), name
+    # and it keeps what it was computed from, to lay the same gun at other angles
+    for name in ("drag_area_m2", "mass_kg", "surface_density_kg_m3", "rotation_rate_rad_s"):
+        assert getattr(by_launch, name) == pytest.approx(getattr(explicit, name), rel=1e-12), name
+    assert by_launch.rotation_rate_rad_s == earth.ROTATION_RATE_RAD_S
     solution = eci.solution_for_launch(launch, model)
     assert solution.apogee_altitude() == pytest.approx(
         eci.solution_for(explicit).apogee_altitude(), rel=1e-12
+    )
+
+
+def test_correction_for_launch_takes_each_rounds_mass_drag_and_air():
+    """Rounds of one gun with their own masses, one drag area and a site's air: eq 6.11's beta
+    goes as Cd0 A rho0 / m, and the launch geometry (mu, V_tangent's direction) is the gun's."""
+    speeds, masses = np.array([1800.0, 1900.0, 2000.0]), np.array([77.6, 83.9, 84.4])
+    rounds = Launches(
+        BASELINE,
+        speeds,
+        85.0,
+        bearing_deg=109.0,
+        latitude_deg=BARBADOS.latitude_rad / DEG,
+        rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+    )
+    given = dict(mass_kg=masses, drag_area_m2=2.85e-3, surface_density_kg_m3=1.14)
+    by_launch = eci.correction_for_launch(rounds, "dissertation", **given)
+    explicit = eci.launch_correction(
+        speeds, 85 * DEG, 109 * DEG, BARBADOS.latitude_rad, model="dissertation", **given
+    )
+    for name in ("velocity_m_s", "misalignment_rad", "beta", "tau", "mass_kg"):
+        assert getattr(by_launch, name) == pytest.approx(getattr(explicit, name), rel=1e-12), name
+    heavier = eci.correction_for_launch(rounds, "dissertation", **{**given, "mass_kg": 2 * masses})
+    assert heavier.beta == pytest.approx(by_launch.beta / 2, rel=1e-12)
+    assert heavier.misalignment_rad == pytest.approx(by_launch.misalignment_rad, rel=1e-12)
+    own = eci.correction_for_launch(rounds, "dissertation")  # the cone's mass and 1.225 kg/m^3
+    assert own.beta * own.mass_kg / own.drag_area_m2 == pytest.approx(
+        by_launch.beta * masses / 2.85e-3 * 1.225 / 1.14, rel=1e-12
     )
 
 

@@ -16,6 +16,9 @@ earlier output, and each capability the record claims checked in flight:
 - a day with denser air flies as a lighter projectile does (drag is rho A / m; the engines that
   model the day's air);
 - the result converges as the engine's numerical tolerance tightens.
+
+The ECI MKS flies its own table; on a still Earth it is the MKS's, and on a turning Earth in
+vacuum it is the rotating 3DOF's, frame and all.
 """
 
 import dataclasses
@@ -26,10 +29,16 @@ import numpy as np
 import pytest
 
 import harp_analysis
-from harp_analysis.engines import catalogue, eci, kepler, mks, mks_improved
+from harp_analysis.engines import catalogue, eci, kepler, mks, mks_improved, threedof
 from harp_analysis.foundation import earth
 from harp_analysis.foundation.validation import ModelValidityWarning
-from harp_analysis.models.launch import HP_CHAPTER_2, LP_CHAPTER_2, Launches, chapter_2
+from harp_analysis.models.launch import (
+    HP_CHAPTER_2,
+    LP_CHAPTER_2,
+    Launches,
+    baseline_chapter_4,
+    chapter_2,
+)
 from harp_analysis.models.projectiles import BASELINE, HP
 from harp_analysis.models.trajectory import BASE_COLUMNS, METADATA_KEYS
 
@@ -42,6 +51,7 @@ TOLERANCE_STEPS = {
     "6dof": (1e-6, 1e-8, 1e-10, 1e-12),
     "mlt": (4000.0, 2000.0, 1000.0, 250.0),
     "mks": (1, 2, 3, 8),
+    "eci_mks": (1, 2, 3, 8),
     "appendix_a": (0.08, 0.04, 0.02, 0.005),
 }
 VACUUM_TOLERANCE_M = {"mlt": 50.0, "appendix_a": 300.0}  # others 1 mm
@@ -238,18 +248,95 @@ def test_a_denser_day_flies_as_a_lighter_projectile(engine):
         assert denser_day[key] == pytest.approx(light_round[key], rel=1e-8)
 
 
+# --- the ECI MKS's table against the MKS's and the rotating 3DOF's --------------------------------
+@pytest.mark.parametrize(
+    "launch",
+    [
+        HP_CHAPTER_2,  # its wind left out by both
+        baseline_chapter_4(30.0, bearing_deg=17.0, latitude_deg=-33.0, longitude_deg=151.2),
+        VACUUM,
+    ],
+    ids=["HP", "baseline, off the equator", "vacuum"],
+)
+def test_the_eci_mks_on_a_still_earth_flies_the_mks_table(launch):
+    """Without the Earth's rotation omega x r0 and V_tangent vanish, mu = 0 and (Vrel/V)^2 =
+    1: eqs 6.6-6.15 are the MKS's constants, so every row and every number of the metadata."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelValidityWarning)  # the wind both leave out
+        still = eci.simulate_eci_mks(launch, warn=False)
+        flat = mks.simulate_mks(launch, warn=False)
+    assert list(still.columns) == list(flat.columns)
+    for column in BASE_COLUMNS:
+        np.testing.assert_allclose(still[column], flat[column], rtol=1e-12, atol=1e-6)
+    for key in METADATA_KEYS[1:]:
+        expected = flat.attrs[key]
+        if isinstance(expected, float):
+            expected = pytest.approx(expected, rel=1e-12, abs=1e-6)
+        assert still.attrs[key] == expected, key
+
+
+#: A shot from Barbados (its longitude, the HP's muzzle speed) on the turning Earth in vacuum,
+#: where the ECI MKS is exact: the inertial conic of Vrel + omega x r0 (no drag, no V_tangent).
+TURNING_VACUUM = VACUUM.but(
+    latitude_deg=13.08,
+    longitude_deg=-59.6,
+    bearing_deg=109.0,
+    elevation_deg=60.0,
+    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+)
+
+
+def test_the_eci_mks_on_a_turning_earth_in_vacuum_flies_the_rotating_3dof():
+    """The same frame as the 3DOF's: inertial positions in the Earth's axes at launch, ranges
+    on the turning Earth, Mach on the speed relative to the turning air. At the 3DOF's own
+    times (placed on :data:`eci.TIME_GRID_POINTS` angles: millimetres here), and the metadata's
+    apogee and impact."""
+    flight = threedof.simulate_3dof(TURNING_VACUUM, output_step_s=2.0)
+    table = eci.simulate_eci_mks(TURNING_VACUUM, times_s=flight.time_s)
+    both = table.iloc[:-1]  # at the 3DOF's times; the last row is the impact
+    assert len(both) >= len(flight) - 1
+    flown = flight.iloc[: len(both)]
+    np.testing.assert_allclose(both.time_s, flown.time_s, rtol=0, atol=0)
+    position = both[["x_m", "y_m", "z_m"]].to_numpy() - flown[["x_m", "y_m", "z_m"]].to_numpy()
+    assert np.max(np.linalg.norm(position, axis=1)) < 0.01
+    for column, tolerance in (
+        ("altitude_m", 0.01),
+        ("ground_range_m", 0.01),
+        ("cross_range_m", 0.01),
+        ("speed_m_s", 1e-4),
+        ("mach", 1e-7),
+        ("specific_angular_momentum_m2_s", 1e-9 * float(flown.specific_angular_momentum_m2_s[0])),
+        ("flight_path_angle_rad", 1e-8),
+    ):
+        np.testing.assert_allclose(both[column], flown[column], rtol=0, atol=tolerance)
+    assert abs(flight.attrs["cross_range_m"]) > 1e3  # the turning Earth moves the impact
+    for key, tolerance in (
+        ("apogee_altitude_m", 1e-4),
+        ("apogee_time_s", 1e-6),
+        ("apogee_ground_range_m", 1e-4),
+        ("time_of_flight_s", 1e-6),
+        ("range_m", 1e-4),
+        ("cross_range_m", 1e-4),
+        ("impact_speed_m_s", 1e-4),
+    ):
+        assert table.attrs[key] == pytest.approx(flight.attrs[key], abs=tolerance), key
+
+
+def test_the_eci_mks_table_names_what_it_cannot_take():
+    with pytest.raises(ValueError, match="times_s"):
+        eci.simulate_eci_mks(TURNING_VACUUM, times_s=[3.0, 1.0])
+    with pytest.raises(ValueError, match="n_points"):
+        eci.simulate_eci_mks(TURNING_VACUUM, n_points=1)
+    with pytest.raises(TypeError, match="launch must be a Launch"):
+        eci.simulate_eci_mks([TURNING_VACUUM])
+    with pytest.raises(ValueError, match="escapes"):
+        eci.simulate_eci_mks(TURNING_VACUUM.but(speed_m_s=12e3), warn=False)
+
+
 # --- every engine over the launches it accepts -------------------------------------------------
 def _improved_mks(launch):
     solution = mks_improved.solve(launch)
     return {"apogee_altitude_m": solution.apogee_altitude_m, "range_m": solution.impact_range_m[0]}
-
-
-def _eci_mks(launch):
-    solution = eci.solution_for_launch(launch)
-    return {
-        "apogee_altitude_m": float(solution.apogee_altitude()),
-        "range_m": earth.RADIUS_M * float(solution.impact_angle),
-    }
 
 
 #: Every engine of the catalogue and the MKS solutions without a table of their own, with their
@@ -261,7 +348,6 @@ _GRID_ENGINES = {
         )
         for engine in ENGINES
     },
-    "eci_mks": _eci_mks,
     "improved_mks": _improved_mks,
 }
 #: What each engine is checked against: the 6DOF for linear theory (its own equations with

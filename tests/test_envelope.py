@@ -10,6 +10,7 @@ import pytest
 
 from harp_analysis.analyses.fire_control import envelope, firing
 from harp_analysis.analyses.fire_control.firing import firing_solutions, great_circle
+from harp_analysis.analyses.fire_control.verification import verify_with_3dof
 from harp_analysis.engines import threedof
 from harp_analysis.foundation import earth
 from harp_analysis.models.sites import BARBADOS, YUMA
@@ -93,11 +94,11 @@ def test_map_miss_is_the_3dof_fired_at_the_mks_solution(east_map):
 
 
 def test_map_miss_agrees_with_the_verification(east_map):
-    """firing.verify_with_3dof measures the same flight's miss at the MKS solution (its
+    """verification.verify_with_3dof measures the same flight's miss at the MKS solution (its
     east and north components); the straight-line distance differs by the vertical part only."""
     row = east_map[(east_map.root == "low") & np.isfinite(east_map.miss_3dof_m)].iloc[0]
     target = firing.destination(GUN, 90.0, row.downrange_m, row.altitude_m)
-    verification = firing.verify_with_3dof(GUN, target, firing_solutions(GUN, target).low)
+    verification = verify_with_3dof(GUN, target, firing_solutions(GUN, target).low)
     assert row.miss_3dof_m == pytest.approx(verification.mks_miss_m, abs=1.0)
 
 

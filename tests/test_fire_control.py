@@ -13,9 +13,9 @@ from harp_analysis.analyses.fire_control.firing import (
     FiringSolution,
     TargetPoint,
     firing_solutions,
-    raid_windows,
-    verify_with_3dof,
 )
+from harp_analysis.analyses.fire_control.intercepts import raid_windows
+from harp_analysis.analyses.fire_control.verification import verify_with_3dof
 from harp_analysis.engines import eci, kepler, threedof
 from harp_analysis.foundation import earth
 from harp_analysis.models.launch import Launch
@@ -284,17 +284,42 @@ def test_target_fields_are_refused_by_name(data, name):
         TargetPoint(**{**fields, name: value})
 
 
+def test_points_from_earth_fixed_positions_are_the_points_that_give_them():
+    """TargetPoint.from_earth_fixed inverts earth_fixed_m, for a gun at any longitude, keeps
+    each arrival time, and gives None for a point below the ground."""
+    gun_longitude = -59.6
+    points = [
+        TargetPoint(13.1, -57.9, 20e3),
+        TargetPoint(-62.0, 170.0, 0.0),
+        TargetPoint(89.0, 5.0),
+    ]
+    fixed = np.array([p.earth_fixed_m(gun_longitude) for p in points]).T
+    below = 0.5 * fixed[:, :1]  # halfway to the Earth's centre
+    found = TargetPoint.from_earth_fixed(
+        np.hstack([fixed, below]), [10.0, 20.0, 30.0, 40.0], gun_longitude
+    )
+    assert found[-1] is None
+    for point, back, arrival in zip(points, found, (10.0, 20.0, 30.0), strict=False):
+        assert back.latitude_deg == pytest.approx(point.latitude_deg, abs=1e-9)
+        assert back.longitude_deg == pytest.approx(point.longitude_deg, abs=1e-9)
+        assert back.altitude_m == pytest.approx(point.altitude_m, abs=1e-6)
+        assert back.arrival_time_s == arrival
+    with pytest.raises(ValueError, match="arrival_times_s"):
+        TargetPoint.from_earth_fixed(fixed, [10.0, -1.0, 30.0])
+    with pytest.raises(ValueError, match="positions_m"):
+        TargetPoint.from_earth_fixed(fixed[:, :2].T, [10.0, 20.0])
+
+
 # --- part 2: Kepler targets and intercepts ------------------------------------------------------
 from scipy.integrate import solve_ivp  # noqa: E402
 
-from harp_analysis.analyses.fire_control.firing import (  # noqa: E402
-    BARBADOS_HP,
+from harp_analysis.analyses.fire_control.costs import shoot_3dof  # noqa: E402
+from harp_analysis.analyses.fire_control.firing import BARBADOS_HP, barbados_case  # noqa: E402
+from harp_analysis.analyses.fire_control.intercepts import (  # noqa: E402
     KeplerTarget,
-    barbados_case,
     intercept,
     intercept_window,
     raid,
-    shoot_3dof,
 )
 from harp_analysis.models.trajectory import rotate_about_axis  # noqa: E402
 

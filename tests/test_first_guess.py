@@ -13,6 +13,7 @@ import pytest
 
 from harp_analysis.analyses.fire_control import firing, first_guess
 from harp_analysis.analyses.fire_control.firing import TargetPoint, destination, firing_solutions
+from harp_analysis.analyses.fire_control.verification import verify_with_3dof
 from harp_analysis.engines import mks_improved
 from harp_analysis.foundation import earth
 from harp_analysis.foundation.validation import ModelValidityWarning
@@ -94,7 +95,7 @@ def test_the_improved_mks_moves_a_long_low_shot_toward_the_3dof():
     target = destination(GUN, 90.0, 180e3)
     root = firing_solutions(GUN, target).low
     better = _improved(GUN, target, root)
-    check_mks, check_improved = firing.verify_with_3dof(
+    check_mks, check_improved = verify_with_3dof(
         GUN, [target, target], [root, better], tolerance_m=1.0
     )
     assert root.elevation_deg < check_mks.elevation_deg  # the MKS's shot falls short

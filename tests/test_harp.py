@@ -9,6 +9,7 @@ import pytest
 from harp_analysis.analyses.harp import apogees
 from harp_analysis.analyses.harp.appendices import HarpDataError, load_appendix, load_muzzle_speeds
 from harp_analysis.engines import eci
+from harp_analysis.models.sites import get_site
 
 SITES = ("barbados", "yuma")
 #: Columns the dissertation model reproduces within print rounding for every round; the others
@@ -158,3 +159,37 @@ def test_missing_round_speed_is_named(monkeypatch):
         monkeypatch.undo()
         apogees._appendix_rounds.cache_clear()
     assert math.isfinite(apogees.appendix_rounds("yuma").muzzle_speed_m_s.sum())
+
+
+@pytest.mark.parametrize("site", SITES)
+def test_a_round_is_fired_from_its_sites_gun_with_its_own_mass_drag_and_air(site):
+    """:func:`apogees.round_corrections` through the one door from a Launch: the site's
+    latitude, gun bearing and 85 deg on the turning Earth (each angle the site's own), each
+    round's mass, the given Cd0 A and the site's air, as eqs 5.1-5.8 and 6.11-6.16 of those."""
+    launch_site = get_site(site)
+    speeds, masses = np.array([1800.0, 1950.0]), np.array([83.9, 77.6])
+    gun = apogees.gun_launch(site, apogees.martlet(83.9, 1800.0, drag_area=2.8e-3), speeds)
+    assert (gun.latitude_rad == launch_site.latitude_rad).all()
+    assert (gun.bearing_rad == launch_site.gun_bearing_rad).all()
+    assert (gun.elevation_rad == launch_site.elevation_rad).all()
+    rounds = apogees.round_corrections(site, speeds, masses, 2.8e-3, "consistent")
+    explicit = eci.launch_correction(
+        speeds,
+        launch_site.elevation_rad,
+        launch_site.gun_bearing_rad,
+        launch_site.latitude_rad,
+        drag_area_m2=2.8e-3,
+        mass_kg=masses,
+        surface_density_kg_m3=launch_site.surface_density_kg_m3,
+        model="consistent",
+    )
+    for name in ("misalignment_rad", "tangent_speed_m_s", "beta", "tau", "speed_ratio_squared"):
+        assert np.array_equal(getattr(rounds, name), getattr(explicit, name)), name
+    # no V_tangent (which the air would turn): eq 6.11's beta goes as rho0
+    standard, thinner = (
+        apogees.round_corrections(
+            site, speeds, masses, 2.8e-3, "printed_columns", surface_density_kg_m3=density
+        )
+        for density in (None, 1.0)
+    )
+    assert thinner.beta == pytest.approx(standard.beta / launch_site.surface_density_kg_m3)

@@ -224,6 +224,31 @@ def test_chunks_split_as_stated():
     assert chunks(3, 5) == [range(0, 3)]
 
 
+class _Threads:
+    """A stand-in for a Dask client: its cluster's threads, per worker."""
+
+    def __init__(self, *threads):
+        self.threads = threads
+
+    def nthreads(self):
+        return {f"worker {i}": n for i, n in enumerate(self.threads)}
+
+    def submit(self, *args):
+        raise AssertionError("nothing is sent")
+
+
+@pytest.mark.parametrize("count", [0, 1, 7, 8, 9, 100])
+def test_client_shares_cover_the_items_once_in_order_four_for_each_thread(count):
+    items = list(range(count))
+    shares = sweeps.client_shares(items, _Threads(1, 1))
+    assert [item for share in shares for item in share] == items
+    assert len(shares) <= 8 and all(shares)
+    if count >= 8:
+        assert len(shares) >= 5  # within a share's rounding of 4 x 2 threads
+    with pytest.raises(TypeError, match="client must be a Dask client"):
+        sweeps.client_shares(items, object())
+
+
 _NOT_WHOLE = st.floats().filter(lambda x: not (math.isfinite(x) and x.is_integer()))
 
 
@@ -370,18 +395,19 @@ def test_a_worker_killed_mid_sweep_loses_and_duplicates_no_sample(client):
 
 @on_cluster
 def test_a_raid_and_its_verification_are_the_same_on_the_cluster(client):
-    from harp_analysis.analyses.fire_control import firing
+    from harp_analysis.analyses import fire_control
+    from harp_analysis.analyses.fire_control.firing import BARBADOS_HP
 
-    gun = firing.BARBADOS_HP
-    raid = firing.raid(gun, 3)
-    here = firing.raid_windows(gun, raid, count=8)
-    there = firing.raid_windows(gun, raid, count=8, client=client)
+    gun = BARBADOS_HP
+    raid = fire_control.raid(gun, 3)
+    here = fire_control.raid_windows(gun, raid, count=8)
+    there = fire_control.raid_windows(gun, raid, count=8, client=client)
     assert [w.intercepts for w in here] == [w.intercepts for w in there]
-    pairs = firing.raid_roots(here)
+    pairs = fire_control.raid_roots(here)
     assert pairs, "the small raid has feasible intercepts"
     aims, roots = [item.aim for item, _ in pairs], [root for _, root in pairs]
-    local = firing.verify_with_3dof(gun, aims, roots, tolerance_m=1.0)
-    remote = firing.verify_with_3dof(gun, aims, roots, tolerance_m=1.0, client=client)
+    local = fire_control.verify_with_3dof(gun, aims, roots, tolerance_m=1.0)
+    remote = fire_control.verify_with_3dof(gun, aims, roots, tolerance_m=1.0, client=client)
     np.testing.assert_equal(
         [dataclasses.astuple(v) for v in remote], [dataclasses.astuple(v) for v in local]
     )

@@ -46,6 +46,7 @@ _API = {
     "simulate_6dof": "engines.sixdof",
     "simulate_mlt": "engines.mlt",
     "simulate_mks": "engines.mks",
+    "simulate_eci_mks": "engines.eci",
     "simulate_appendix_a": "engines.appendix_a",
     # fire control
     "TargetPoint": "analyses.fire_control.firing",
@@ -62,6 +63,7 @@ if TYPE_CHECKING:  # for type checkers and editors; at run time each name is imp
     from .analyses.fire_control.firing import TargetPoint, destination, firing_solutions
     from .engines.appendix_a import simulate_appendix_a
     from .engines.catalogue import fly, get_engine
+    from .engines.eci import simulate_eci_mks
     from .engines.mks import simulate_mks
     from .engines.mlt import simulate_mlt
     from .engines.sixdof import simulate_6dof

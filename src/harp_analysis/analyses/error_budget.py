@@ -45,7 +45,6 @@ from ..foundation.sweeps import SAMPLING_METHODS, chunks, sample_chunk, sweep
 from ..foundation.validation import check_choice, check_range, real_number, whole_number
 from ..models.launch import Launch, Launches, baseline_chapter_4, chapter_2
 from ..models.projectiles import HP
-from ..models.sites import BARBADOS
 from ..models.trajectory import launch_frame, rotate_about_axis
 from .harp import apogees
 from .harp import confidence as harp_confidence
@@ -144,14 +143,8 @@ def martlet_at_barbados() -> Launch:
     rounds = apogees.appendix_rounds("barbados")
     rounds = rounds[~rounds.duplicate_of_earlier_row]
     speed = float(rounds.muzzle_speed_m_s.median())
-    return Launch(
-        apogees.martlet(float(rounds.mass_kg.median()), speed),
-        speed,
-        math.degrees(BARBADOS.elevation_rad),
-        bearing_deg=math.degrees(BARBADOS.gun_bearing_rad),
-        latitude_deg=math.degrees(BARBADOS.latitude_rad),
-        rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
-    )
+    martlet = apogees.martlet(float(rounds.mass_kg.median()), speed)
+    return apogees.gun_launch("barbados", martlet, speed)
 
 
 def representative_launches() -> dict[str, Launch]:
@@ -246,21 +239,16 @@ def model_error(launch: Launch) -> pd.Series:
     3DOF's apogee time (the distance between the two positions at the same time, Chapter 5 C's
     measure), each from the nominal flight of :func:`nominal`."""
     reference, apogee_time, _ = nominal(_check_launch(launch))
-    correction = eci.correction_for_launch(launch)
-    solution = eci.solution_for(correction, warn=False)
-    impact_angle = float(solution.impact_angle)
-    grid = np.linspace(0.0, impact_angle, 4001)
-    times = solution.time(grid)
-    angles = np.array([impact_angle, np.interp(apogee_time, times, grid)])
-    inertial = eci.inertial_positions(solution, correction, launch.latitude_rad, angles).T
-    moments = np.array([float(np.ravel(times)[-1]), apogee_time])
-    turned = math.radians(launch.longitude_deg) - launch.rotation_rate_rad_s * moments
-    fixed = rotate_about_axis(inertial, turned).T
+    flight = eci.simulate_eci_mks(launch, times_s=[apogee_time], warn=False)
+    # the rows at the 3DOF's apogee time and at the impact, turned into the Earth's axes
+    moments = flight.time_s.to_numpy()
+    inertial = flight[["x_m", "y_m", "z_m"]].to_numpy().T
+    fixed = rotate_about_axis(inertial, -launch.rotation_rate_rad_s * moments).T
     return pd.Series(
         {
-            "apogee_m": abs(float(solution.apogee_altitude()) - reference[0]),
-            "impact_m": float(np.linalg.norm(fixed[0] - reference[1:4])),
-            "position_m": float(np.linalg.norm(fixed[1] - reference[4:7])),
+            "apogee_m": abs(flight.attrs["apogee_altitude_m"] - reference[0]),
+            "impact_m": float(np.linalg.norm(fixed[-1] - reference[1:4])),
+            "position_m": float(np.linalg.norm(fixed[0] - reference[4:7])),
         }
     )
 

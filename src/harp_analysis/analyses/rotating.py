@@ -1,13 +1,13 @@
 """Chapter 5 C: the ECI Modified Kepler Solution against the rotating-Earth 3DOF (Figs 5.4-5.9).
 
 The baseline cone fired from latitude 0 and 45 deg on bearings 000T, 090T and 270T at 30-85 deg,
-3DOF with the Earth turning (:data:`harp_analysis.foundation.earth.ROTATION_RATE_RAD_S`) against the
-three-term ECI MKS (:func:`harp_analysis.engines.eci.eci_solution`, with V_tangent as Chapter 5 adds
-it, eq 6.15, and the decay of eq 6.14 carrying the same cos(mu) (Vrel/V)^2 as the driving terms:
-eq 6.14 as printed drops (Vrel/V)^2, which puts the east- and west-fired apogees several km
-off, the wrong way round; ``decay="printed"`` keeps it for comparison). The MKS lives in the
-inertial plane of its corrected launch velocity; its position at
-each simulation time is placed in that plane and the error is the distance between the two
+3DOF with the Earth turning (:data:`harp_analysis.foundation.earth.ROTATION_RATE_RAD_S`) against
+the three-term ECI MKS (its table, :func:`harp_analysis.engines.eci.simulate_eci_mks`, with
+V_tangent as Chapter 5 adds it, eq 6.15, and the decay of eq 6.14 carrying the same cos(mu)
+(Vrel/V)^2 as the driving terms: eq 6.14 as printed drops (Vrel/V)^2, which puts the east- and
+west-fired apogees several km off, the wrong way round; ``decay="printed"`` keeps it for
+comparison). The MKS lives in the inertial plane of its corrected launch velocity; its position
+at each simulation time is placed in that plane and the error is the distance between the two
 positions at the same time (the direct reading of Chapter 5 C's vector error plus time error).
 
 The air the 3DOF flies is a choice the text leaves implicit. Chapter 2's simulations use eqs
@@ -70,10 +70,12 @@ def case(
     decay: str = "consistent",
     atmosphere: str = "two_segment",
 ):
-    """(rotating 3DOF table, ECI MKS, error table) of the baseline cone: the ECI MKS of
+    """(rotating 3DOF table, ECI MKS table, error table) of the baseline cone: the ECI MKS of
     :data:`eci.CONSISTENT`, or with eq 6.14's printed decay (``decay="printed"``), against the
     3DOF flown through ``atmosphere`` (eqs 2.1-2.2 by default, or Appendix A's
-    ``"three_layer"``; the launch's air also sets the MKS's Cd0, at the gun's Mach number)."""
+    ``"three_layer"``; the launch's air also sets the MKS's Cd0, at the gun's Mach number).
+    The 3DOF's rows are those while both fly; the MKS's (:func:`eci.simulate_eci_mks`) are at
+    the same times, and its impact."""
     model = replace(eci.CONSISTENT, name=f"consistent, {decay} decay", decay=decay)
     launch = baseline_chapter_4(
         elevation_deg,
@@ -83,13 +85,9 @@ def case(
         atmosphere=atmosphere,
     )
     flight = simulate_3dof(launch, output_step_s=0.5)
-    correction = eci.correction_for_launch(launch, model)
-    solution = eci.solution_for(correction, warn=False)
-    grid = np.linspace(0.0, solution.impact_angle, 4001)
-    times = solution.time(grid)
-    flight = flight[flight.time_s <= times[-1]]  # compare while both are in flight
-    theta = np.interp(flight.time_s, times, grid)
-    mks_xyz = eci.inertial_positions(solution, correction, launch.latitude_rad, theta).T
+    table = eci.simulate_eci_mks(launch, model=model, times_s=flight.time_s, warn=False)
+    flight = flight.iloc[: len(table) - 1]  # compare while both are in flight
+    mks_xyz = table[["x_m", "y_m", "z_m"]].to_numpy()[:-1].T
     sim_xyz = flight[["x_m", "y_m", "z_m"]].to_numpy().T
     errors = pd.DataFrame(
         {
@@ -98,7 +96,7 @@ def case(
             "error_m": np.linalg.norm(sim_xyz - mks_xyz, axis=0),
         }
     )
-    return flight, solution, errors
+    return flight, table, errors
 
 
 def error_at_apogee_km(

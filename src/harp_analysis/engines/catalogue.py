@@ -18,6 +18,7 @@ engine             wind   rotating  day's    full table  batch  rigid body  tole
 ``6dof``           yes    no        no       yes         no     yes         ``rtol``
 ``mlt``            yes    no        no       yes         no     yes         ``segment_length_m``
 ``mks``            no     no        yes      yes         no     no          ``n_terms``
+``eci_mks``        no     yes       yes      yes         no     no          ``n_terms``
 ``appendix_a``     no     yes [1]_  yes      no          no     no          ``dt_s``
 =================  =====  ========  =======  ==========  =====  ==========  ====================
 
@@ -26,9 +27,8 @@ engine             wind   rotating  day's    full table  batch  rigid body  tole
 What an engine does not model it says: a wind or a day's air left out is a
 :class:`~harp_analysis.foundation.validation.ModelValidityWarning` naming the field; a rotating
 Earth it cannot fly is a ValueError naming ``rotation_rate_rad_s``. The MKS's many launches at once
-(:func:`.mks.for_launch`) are one closed-form solution, not flights; the improved MKS
-(:mod:`.mks_improved`) and the ECI MKS (:mod:`.eci`) have no trajectory table yet and are not
-listed.
+(:func:`.mks.for_launch`, :func:`.eci.solution_for_launch`) are one closed-form solution, not
+flights; the improved MKS (:mod:`.mks_improved`) has no trajectory table and is not listed.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ import pandas as pd
 from ..foundation.counting import Counted
 from ..foundation.validation import check_choice
 from ..models.launch import Launch
-from . import appendix_a, mks, mlt, sixdof, threedof
+from . import appendix_a, eci, mks, mlt, sixdof, threedof
 
 __all__ = ["Engine", "ENGINES", "ENGINE_NAMES", "get_engine", "fly"]
 
@@ -133,7 +133,18 @@ _ENGINES = (
         full_table=True,
         rigid_body=False,
     ),
-    # The ECI MKS (Chapter 5, eci's table) is registered here once it has a table of its own.
+    Engine(
+        "eci_mks",
+        "ECI MKS",
+        "the MKS on the rotating Earth (Chapter 5's inertial-frame correction), closed form",
+        eci.simulate_eci_mks,
+        "n_terms",
+        wind=False,
+        rotating_earth=True,
+        day_air=True,
+        full_table=True,
+        rigid_body=False,
+    ),
     Engine(
         "appendix_a",
         "Appendix A macro",

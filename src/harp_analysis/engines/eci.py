@@ -13,7 +13,10 @@ enter :class:`mks.ModifiedKeplerSolution` as ``drive_scale`` = cos(mu) (Vrel/V)^
 and ``decay_scale`` = cos(mu) (eq 6.14).
 
 Vectors are (3, ...) arrays in the inertial frame of :func:`trajectory.launch_frame` at longitude 0
-(z along the Earth's axis); angles in rad, speeds in m/s, SI throughout.
+(z along the Earth's axis); angles in rad, speeds in m/s, SI throughout. The one door from a
+:class:`~harp_analysis.models.launch.Launch` is :func:`correction_for_launch` (and
+:func:`solution_for_launch`); :func:`simulate_eci_mks` flies the ECI MKS as the engines'
+trajectory table, in the 3DOF's frame on a rotating Earth.
 
 Sign of V_tangent (the text leaves it open: "in the plane created by the relative velocity and
 the velocity corrected for Earth rotation and tangent to the corrected velocity"). The drag
@@ -41,14 +44,24 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import pandas as pd
 
 from ..foundation import earth
 from ..foundation.compiled import formula, select
-from ..foundation.validation import check_choice, check_range, finite_array
+from ..foundation.validation import check_choice, check_range, finite_array, whole_number
 from ..models.atmosphere import TEXT_DECAY_CONSTANT_PER_M
 from ..models.launch import Launch, Launches
 from ..models.sites import get_site
-from ..models.trajectory import cross, dot, launch_axes, launch_frame
+from ..models.trajectory import (
+    MAX_ROWS,
+    cross,
+    describe,
+    dot,
+    launch_axes,
+    launch_frame,
+    rotate_about_axis,
+    surface_ranges,
+)
 from . import mks
 
 __all__ = [
@@ -76,6 +89,8 @@ __all__ = [
     "solution_for_launch",
     "site_surface_speed_km_s",
     "inertial_positions",
+    "simulate_eci_mks",
+    "TIME_GRID_POINTS",
 ]
 
 
@@ -470,6 +485,13 @@ class LaunchCorrection:
     beta: np.ndarray  # eq 6.11
     tau: np.ndarray  # eq 6.12
     initial_angular_momentum_m2_s: np.ndarray  # eq 6.13
+    # what the corrections were computed from, beside the gun's speed and angles: what
+    # re-lays the same gun at other angles (the fire-control solver) or flies it needs
+    drag_area_m2: np.ndarray  # Cd0 A
+    mass_kg: np.ndarray
+    surface_density_kg_m3: np.ndarray  # rho0, eq 3.11's air at the gun
+    decay_constant_per_m: float  # k of eq 3.11
+    rotation_rate_rad_s: float
 
     @property
     def drive_scale(self) -> np.ndarray:
@@ -578,6 +600,11 @@ def launch_correction(
         beta,
         tau,
         momentum,
+        np.array(drag_area),  # copies: not views of the caller's arrays
+        np.array(mass),
+        np.array(density),
+        decay_constant_per_m,
+        rotation_rate_rad_s,
     )
 
 
@@ -621,13 +648,24 @@ def eci_solution(
 
 
 def correction_for_launch(
-    launch: Launch | Launches, model: str | EciModel = CONSISTENT
+    launch: Launch | Launches,
+    model: str | EciModel = CONSISTENT,
+    *,
+    mass_kg=None,
+    drag_area_m2=None,
+    surface_density_kg_m3=None,
 ) -> LaunchCorrection:
     """:func:`launch_correction` of a :class:`~harp_analysis.models.launch.Launch` (or of
     :class:`~harp_analysis.models.launch.Launches` sharing one Earth rotation, each launch a
     column): its speed, elevation, bearing and latitude, Cd0 A at the launch Mach, its mass, its
-    air's density at the gun and its Earth rotation. The ECI MKS is drag-only: a wind is ignored
-    with a warning; it launches from the Earth's surface (r0 = R)."""
+    air's density at the gun (:func:`mks.gun_density_kg_m3`) and its Earth rotation. The ECI
+    MKS is drag-only: a wind is ignored with a warning; it launches from the Earth's surface
+    (r0 = R).
+
+    ``mass_kg``, ``drag_area_m2`` (Cd0 A, m^2) and ``surface_density_kg_m3`` (rho0 at the gun)
+    replace what the launch's projectile and air give, each a number or an array broadcasting
+    with the launches: the rounds of one gun whose masses, drag or air differ (HARP's rounds,
+    each with its own mass; a drag area being fitted; a site's measured air)."""
     if not isinstance(launch, Launch | Launches):
         raise TypeError(f"launch must be a Launch or Launches; got {type(launch).__name__}")
     launch.require_zero("ECI MKS", "site_altitude_m", reason="it launches from r0 = R")
@@ -645,9 +683,17 @@ def correction_for_launch(
         launch.elevation_rad,
         launch.bearing_rad,
         launch.latitude_rad,
-        drag_area_m2=launch.launch_drag_coefficient * projectile.reference_area_m2,
-        mass_kg=projectile.mass_kg,
-        surface_density_kg_m3=mks.gun_density_kg_m3(launch),
+        drag_area_m2=(
+            launch.launch_drag_coefficient * projectile.reference_area_m2
+            if drag_area_m2 is None
+            else drag_area_m2
+        ),
+        mass_kg=projectile.mass_kg if mass_kg is None else mass_kg,
+        surface_density_kg_m3=(
+            mks.gun_density_kg_m3(launch)
+            if surface_density_kg_m3 is None
+            else surface_density_kg_m3
+        ),
         rotation_rate_rad_s=rotation,
         model=model,
     )
@@ -687,16 +733,183 @@ def site_surface_speed_km_s(site: str) -> float:
     return float(np.linalg.norm(surface_velocity(get_site(site).latitude_rad))) / 1e3
 
 
+def _flight_plane(launch: LaunchCorrection, latitude_rad: float) -> tuple[np.ndarray, np.ndarray]:
+    """The plane of a single-launch ECI MKS in the inertial frame at longitude 0: unit vectors
+    (3,) up at the launch point and along the launch velocity's horizontal part."""
+    up = np.ravel(launch_frame(latitude_rad, 0.0, 0.0)[0])
+    velocity = np.ravel(launch.velocity_m_s)
+    along = velocity - (velocity @ up) * up
+    along /= np.linalg.norm(along)
+    return up, along
+
+
 def inertial_positions(
     solution: mks.ModifiedKeplerSolution, launch: LaunchCorrection, latitude_rad: float, theta_rad
 ) -> np.ndarray:
     """Positions (n, 3) of a single-launch ECI MKS at angular ranges ``theta_rad``: r(theta)
     in the plane of the launch point's radius and the corrected velocity's horizontal part,
     in the inertial frame of :func:`trajectory.launch_frame` at longitude 0 and time zero."""
-    up = np.ravel(launch_frame(latitude_rad, 0.0, 0.0)[0])
-    velocity = np.ravel(launch.velocity_m_s)
-    along = velocity - (velocity @ up) * up
-    along /= np.linalg.norm(along)
+    up, along = _flight_plane(launch, latitude_rad)
     theta = np.asarray(theta_rad, dtype=float)
     radius = np.ravel(solution.radius(theta))
     return radius[:, None] * (np.cos(theta)[:, None] * up + np.sin(theta)[:, None] * along)
+
+
+#: Equal steps of angular range on which :func:`simulate_eci_mks` inverts eq 3.32's t(theta)
+#: for rows at given times (linearly between them: within 4 cm of the path on Chapter 5's
+#: flights, against a grid 16 times finer).
+TIME_GRID_POINTS = 4001
+
+
+def _time_at(solution: mks.ModifiedKeplerSolution, grid, grid_times, theta: float) -> float:
+    """Eq 3.32's time (s) at ``theta`` within the sorted angles ``grid`` whose times are
+    ``grid_times``: the time at the grid's angle before it, and 3-point Gauss-Legendre over
+    the rest of the way."""
+    before = max(int(np.searchsorted(grid, theta, side="right")) - 1, 0)
+    start, end = solution.time(np.array([grid[before], theta]))
+    return float(grid_times[before] + (end - start))
+
+
+def _check_times(times_s) -> np.ndarray:
+    times = np.atleast_1d(finite_array(times_s, "times_s"))
+    if times.ndim != 1 or times.size > MAX_ROWS:
+        raise ValueError(
+            f"times_s must be a sequence of at most {MAX_ROWS:,} times; got shape {times.shape}"
+        )
+    if times.size and (times[0] < 0.0 or np.any(np.diff(times) < 0.0)):
+        raise ValueError("times_s must be sorted and non-negative (s from launch)")
+    return times
+
+
+def simulate_eci_mks(
+    launch: Launch,
+    *,
+    model: str | EciModel = CONSISTENT,
+    n_terms: int = 3,
+    n_points: int = 400,
+    times_s=None,
+    surface_density_kg_m3: float | None = None,
+    warn: bool = True,
+) -> pd.DataFrame:
+    """The ECI MKS of ``launch`` (:func:`solution_for_launch` under ``model``, eqs 6.6-6.15)
+    as the engines' trajectory table (:mod:`harp_analysis.models.trajectory`), launch to
+    impact, with the shared metadata (no right-hand side is evaluated: ``rhs_evaluations =
+    steps = 0``), ``n_terms``, ``model`` (its name), ``beta`` (eq 6.11) and ``decay_scale``
+    (the factor on beta in the decay of eq 6.14).
+
+    Rows: at ``n_points`` equal steps of angular range and the apogee, each step's time by
+    eq 3.32 (3-point Gauss-Legendre between consecutive steps,
+    :meth:`mks.ModifiedKeplerSolution.time`; the apogee's from the step before it), or,
+    given ``times_s`` (s from launch, sorted), at those of them before the impact and at the
+    impact, each placed by linear interpolation of t(theta) on :data:`TIME_GRID_POINTS` equal
+    steps of angular range (the impact's time is that grid's last).
+
+    Frame: the 3DOF's on a rotating Earth (:func:`harp_analysis.engines.threedof.simulate_3dof`).
+    Positions are inertial and Earth-centred, in the axes the Earth has at launch (x toward
+    longitude 0 on the equator, z north), the MKS's plane (the launch point's radius and the
+    launch velocity's horizontal part) turned to the launch's longitude; ``ground_range_m``
+    and ``cross_range_m`` are measured on the turning Earth, from the launch point along and
+    to the right of its bearing (each position turned back by omega t into the Earth's axes);
+    speed, angular momentum and flight-path angle are inertial; Mach is the speed relative to
+    the air, which turns with the Earth, over the speed of sound of the launch's air. The drag
+    coefficient is the MKS's constant Cd0, and drag/gravity its drag on the air-relative speed
+    in eq 3.11's air, rho0 exp(-k a). On a non-rotating Earth the table is
+    :func:`mks.simulate_mks`'s.
+
+    ``surface_density_kg_m3`` replaces rho0 (kg/m^3; :func:`correction_for_launch`): a site's
+    measured air. ValueError for a launch whose MKS escapes (no apogee or impact)."""
+    count = whole_number(n_points, "n_points", low=2, high=MAX_ROWS)
+    if not isinstance(launch, Launch):
+        raise TypeError(
+            f"launch must be a Launch; got {type(launch).__name__} (solution_for_launch "
+            "solves Launches together)"
+        )
+    times = None if times_s is None else _check_times(times_s)
+    correction = correction_for_launch(launch, model, surface_density_kg_m3=surface_density_kg_m3)
+    solution = solution_for(correction, n_terms=n_terms, warn=warn)
+    if solution.escapes[0]:
+        raise ValueError(
+            f"the ECI MKS of launch.speed_m_s = {launch.speed_m_s:g} escapes (its asymptotic "
+            "conic is an escape orbit): there is no apogee or impact to tabulate"
+        )
+    impact, apogee = float(solution.impact_angle), float(solution.apogee_angle)
+    if times is None:
+        grid = np.linspace(0.0, impact, count)
+        grid_times = solution.time(grid)
+        apogee_time = _time_at(solution, grid, grid_times, apogee)
+        at = int(np.searchsorted(grid, apogee))
+        on_grid = at < count and grid[at] == apogee
+        theta = grid if on_grid else np.insert(grid, at, apogee)
+        time = grid_times if on_grid else np.insert(grid_times, at, apogee_time)
+    else:
+        grid = np.linspace(0.0, impact, TIME_GRID_POINTS)
+        grid_times = solution.time(grid)
+        apogee_time = _time_at(solution, grid, grid_times, apogee)
+        before_impact = times[times <= grid_times[-1]]
+        theta = np.append(np.interp(before_impact, grid_times, grid), impact)
+        time = np.append(before_impact, grid_times[-1])
+    frame = pd.DataFrame(_table_columns(launch, correction, solution, theta, time))
+    apogee_row = _table_columns(
+        launch, correction, solution, np.array([apogee]), np.array([apogee_time])
+    )
+    return describe(
+        frame,
+        engine="ECI MKS",
+        launch=launch,
+        apogee=(apogee_time, float(solution.apogee_altitude()), apogee_row["ground_range_m"][0]),
+        impact=True,
+        rhs_evaluations=0,
+        steps=0,
+        max_time_s=math.inf,
+        n_terms=n_terms,
+        model=correction.model.name,
+        beta=float(correction.beta),
+        decay_scale=float(correction.decay_scale),
+    )
+
+
+def _table_columns(
+    launch: Launch,
+    correction: LaunchCorrection,
+    solution: mks.ModifiedKeplerSolution,
+    theta: np.ndarray,
+    time: np.ndarray,
+) -> dict:
+    """The columns of :func:`simulate_eci_mks`'s table at the angular ranges ``theta`` (rad),
+    reached at ``time`` (s)."""
+    u, slope = solution.u(theta), solution.du_dtheta(theta)
+    radius = 1 / u
+    altitude = radius - earth.RADIUS_M  # r0 = R: correction_for_launch refuses a site altitude
+    speed = solution.angular_momentum(theta) * np.hypot(u, slope)
+    climb = np.arctan2(-slope, u)
+    # the inertial position and velocity at longitude 0: along r-hat and the in-plane normal
+    up, along = _flight_plane(correction, launch.latitude_rad)
+    inertial = inertial_positions(solution, correction, launch.latitude_rad, theta).T
+    outward = np.cos(theta) * up[:, None] + np.sin(theta) * along[:, None]
+    onward = -np.sin(theta) * up[:, None] + np.cos(theta) * along[:, None]
+    velocity = speed * (np.cos(climb) * onward + np.sin(climb) * outward)
+    omega = correction.rotation_rate_rad_s
+    air_velocity = velocity - omega * np.array([-inertial[1], inertial[0], 0.0 * inertial[2]])
+    air_speed = np.sqrt(np.sum(air_velocity * air_velocity, axis=0))
+    longitude = math.radians(launch.longitude_deg)
+    turned = rotate_about_axis(inertial, np.full(theta.size, longitude))
+    fixed = rotate_about_axis(inertial, longitude - omega * time)
+    launch_up, downrange, _ = launch_frame(launch.latitude_rad, longitude, launch.bearing_rad)
+    ground, cross_range = surface_ranges(fixed.T, np.ravel(launch_up), np.ravel(downrange))
+    density = correction.surface_density_kg_m3 * np.exp(-correction.decay_constant_per_m * altitude)
+    drag = 0.5 * density * correction.drag_area_m2 * air_speed**2
+    return {
+        "time_s": time,
+        "x_m": turned[0],
+        "y_m": turned[1],
+        "z_m": turned[2],
+        "altitude_m": altitude,
+        "ground_range_m": ground,
+        "cross_range_m": cross_range,
+        "speed_m_s": speed,
+        "mach": air_speed / launch.air(np.maximum(altitude, 0.0))[1],
+        "drag_coefficient": np.full_like(theta, launch.launch_drag_coefficient),
+        "drag_to_gravity": drag / (correction.mass_kg * earth.GM_M3_S2 / radius**2),
+        "specific_angular_momentum_m2_s": solution.angular_momentum(theta),
+        "flight_path_angle_rad": climb,
+    }

@@ -11,9 +11,10 @@ it finished. A worker lost mid-sweep costs a rerun of its tasks (the scheduler's
 items travel by cloudpickle: a module's function by its name (the workers must import it), a
 lambda, closure or :func:`functools.partial` by value.
 
-:func:`chunks` splits a sample count into ranges of indices, and :func:`sample_chunk` draws one
-range's points of a seeded sample (Sobol' or Philox), so that a chunk's samples depend only on
-the seed and its indices: the chunks, concatenated, are the single draw.
+:func:`chunks` splits a sample count into ranges of indices (:func:`client_shares` a list of
+items among a cluster's threads), and :func:`sample_chunk` draws one range's points of a seeded
+sample (Sobol' or Philox), so that a chunk's samples depend only on the seed and its indices:
+the chunks, concatenated, are the single draw.
 """
 
 from __future__ import annotations
@@ -37,6 +38,7 @@ __all__ = [
     "MAX_CHUNK_NUMBERS",
     "interactive",
     "chunks",
+    "client_shares",
     "sample_chunk",
     "SAMPLING_METHODS",
 ]
@@ -239,6 +241,17 @@ def chunks(count: int, size: int) -> list[range]:
             f"{MAX_ITEMS} chunks; take larger chunks"
         )
     return [range(start, min(start + size, count)) for start in range(0, count, size)]
+
+
+def client_shares(items: list[Item], client) -> list[list[Item]]:
+    """``items`` in consecutive shares, four for each of ``client``'s threads (one at least):
+    the items of a sweep on its cluster (:func:`sweep`) whose work is one vectorised call per
+    share, few enough that each task is worth sending, enough that no thread waits long for
+    the slowest."""
+    _check_client(client)
+    threads = max(1, sum(client.nthreads().values()))
+    size = max(1, -(-len(items) // (4 * threads)))
+    return [items[start : start + size] for start in range(0, len(items), size)]
 
 
 def sample_chunk(seed: int, dimensions: int, indices: range, method: str = "sobol") -> np.ndarray:

@@ -15,8 +15,8 @@ recorded and shown, never silenced.
 
 The 3DOF, the 6DOF and MLT are the engines of :mod:`harp_analysis.engines.catalogue`, under its
 labels (the 6DOF and MLT are its engines for Appendix B's rigid bodies). The MKS here is the text's
-(Chapter 5's ECI MKS where the Earth turns,
-:func:`harp_analysis.engines.mks_improved.dissertation`), the improved one on request; the HARP
+(Chapter 5's ECI MKS where the Earth turns, its table
+:func:`harp_analysis.engines.eci.simulate_eci_mks`), the improved one on request; the HARP
 presets fly the Martlet as Chapter 6 models it
 (:func:`harp_analysis.analyses.harp.apogees.martlet`), with Yuma's thinner air as the day's density
 change.
@@ -40,7 +40,7 @@ from matplotlib.figure import Figure
 
 from ..analyses import mks_improvement
 from ..analyses.harp import apogees
-from ..engines import catalogue, mks, mks_improved
+from ..engines import catalogue, eci, mks, mks_improved
 from ..foundation import earth
 from ..models.atmosphere import ATMOSPHERE_NAMES, SEA_LEVEL_DENSITY_KG_M3
 from ..models.drag import ExponentialDragLaw
@@ -355,12 +355,24 @@ def _from_table(engine: str, table: pd.DataFrame) -> Flown:
     )
 
 
-def _mks(engine: str, launch: Launch, three: pd.DataFrame) -> Flown:
-    """The text's or the improved MKS, sampled in time, with its distance from the 3DOF."""
-    if engine == "MKS":
-        solution = mks_improved.dissertation(launch)
-    else:
-        solution = mks_improved.solve(launch, mks_improvement.calibration())
+def _eci_mks(launch: Launch, three: pd.DataFrame) -> Flown:
+    """The text's MKS (the ECI MKS's table), with its distance from the 3DOF at its times."""
+    table = eci.simulate_eci_mks(launch)
+    at_3dof = eci.simulate_eci_mks(launch, times_s=three.time_s, warn=False).iloc[:-1]
+    position = ["x_m", "y_m", "z_m"]
+    distance = np.linalg.norm(
+        three[position].to_numpy()[: len(at_3dof)] - at_3dof[position].to_numpy(), axis=1
+    )
+    return replace(
+        _from_table("MKS", table),
+        error_to_3dof=pd.DataFrame({"time_s": at_3dof.time_s.to_numpy(), "distance_m": distance}),
+        beta=table.attrs["beta"] * table.attrs["decay_scale"],
+    )
+
+
+def _improved_mks(launch: Launch, three: pd.DataFrame) -> Flown:
+    """The improved MKS, sampled in time, with its distance from the 3DOF."""
+    solution = mks_improved.solve(launch, mks_improvement.calibration())
     if not math.isfinite(solution.impact_time_s):
         raise ValueError("its asymptotic orbit escapes: there is no apogee or impact")
     times = np.linspace(0.0, solution.impact_time_s, 400)
@@ -381,7 +393,7 @@ def _mks(engine: str, launch: Launch, three: pd.DataFrame) -> Flown:
         axis=1,
     )
     return Flown(
-        engine,
+        "improved MKS",
         path,
         solution.apogee_altitude_m,
         solution.apogee_time_s,
@@ -418,8 +430,10 @@ def fly(launch: Launch, engines=ENGINES[:2]) -> tuple[dict[str, Flown], list[str
             try:
                 if engine in _RIGID_BODY:
                     flown[engine] = _from_table(engine, _RIGID_BODY[engine].fly(launch))
+                elif engine == "MKS":
+                    flown[engine] = _eci_mks(launch, three)
                 else:
-                    flown[engine] = _mks(engine, launch, three)
+                    flown[engine] = _improved_mks(launch, three)
             except (ValueError, TypeError, ArithmeticError) as error:
                 messages.append(in_readers_words(f"The {engine} cannot fly this launch: {error}"))
     for warning in caught:  # the models' own warnings, not numpy's arithmetic on the way

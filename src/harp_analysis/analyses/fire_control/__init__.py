@@ -1,2 +1,22 @@
-"""Fire control (Chapter 7 A, built): firing solutions, the compiled solver, intercepts and raids,
-envelopes and first guesses."""
+"""Fire control (Chapter 7 A, built): firing solutions (:mod:`.firing`, by the compiled
+:mod:`.solver`), their 3DOF check (:mod:`.verification`), intercepts and raids
+(:mod:`.intercepts`), the text's counts and timings (:mod:`.costs`), envelopes and first
+guesses. The names a user starts from are here; the package's own modules import from the
+submodules."""
+
+from .firing import TargetPoint, barbados_case, destination, firing_solutions
+from .intercepts import intercept, intercept_window, raid, raid_roots, raid_windows
+from .verification import verify_with_3dof
+
+__all__ = [
+    "firing_solutions",
+    "verify_with_3dof",
+    "raid_windows",
+    "raid_roots",
+    "raid",
+    "barbados_case",
+    "destination",
+    "TargetPoint",
+    "intercept",
+    "intercept_window",
+]

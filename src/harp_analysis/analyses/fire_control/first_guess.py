@@ -47,6 +47,7 @@ from ...models.sites import YUMA
 from ...models.trajectory import rotate_about_axis
 from . import firing as fire_control
 from .firing import FiringSolution, TargetPoint
+from .verification import verify_with_3dof
 
 __all__ = [
     "MODELS",
@@ -171,7 +172,7 @@ def _residual(flight, target: TargetPoint, branch: str, aim: np.ndarray):
     turned = rotate_about_axis(
         inertial[:, None], np.array([-flight.launch.rotation_rate_rad_s * when])
     )
-    return fire_control._east_north(turned[:, 0] - aim, aim), when
+    return fire_control.east_north(turned[:, 0] - aim, aim), when
 
 
 def improved_miss(
@@ -184,8 +185,8 @@ def improved_miss(
     """The improved MKS's miss (m) at ``target`` flown at ``solution``'s elevation and bearing
     (where it crosses the target's radius on the solution's branch, Earth-fixed); NaN if it
     never gets there."""
-    gun = fire_control._check_gun(gun)
-    target = fire_control._check_target(target)
+    gun = fire_control.check_gun(gun)
+    target = fire_control.check_target(target)
     if not isinstance(solution, FiringSolution):
         raise TypeError(f"solution must be a FiringSolution; got {type(solution).__name__}")
     _check_branch(solution, target)
@@ -215,8 +216,8 @@ def improved_solution(
     it does not converge, or the improved MKS has no solution on the way (its re-entry decay
     diverges on some westward shots). A ModelValidityWarning where the root lies outside the
     improved MKS's band of :func:`.mks_improved.air_momentum_share`."""
-    gun = fire_control._check_gun(gun)
-    target = fire_control._check_target(target)
+    gun = fire_control.check_gun(gun)
+    target = fire_control.check_target(target)
     solution = _check_solution(solution, target)
     if isinstance(iterations, bool) or not isinstance(iterations, int | np.integer):
         raise TypeError(f"iterations must be an integer; got {type(iterations).__name__}")
@@ -311,7 +312,7 @@ def _check_guns(guns) -> dict[str, Launch]:
             raise TypeError(f"guns' keys must be site names (str); got {name!r}")
         if not isinstance(gun, Launch):
             raise TypeError(f"guns[{name!r}] must be a Launch; got {type(gun).__name__}")
-        fire_control._check_gun(gun)
+        fire_control.check_gun(gun)
     return dict(guns)
 
 
@@ -341,7 +342,7 @@ def _verify(gun: Launch, entries: list, which: int) -> tuple[list, float]:
     chosen = [entry for entry in entries if entry[which] is not None]
     start = time.perf_counter()
     checks = (
-        fire_control.verify_with_3dof(
+        verify_with_3dof(
             gun, [e[1] for e in chosen], [e[which] for e in chosen], tolerance_m=_LANDED_M
         )
         if chosen

@@ -35,21 +35,26 @@ from __future__ import annotations
 
 import math
 from functools import cache
+from typing import overload
 
 import numpy as np
 import pandas as pd
 from scipy.optimize import brentq, minimize_scalar
 
 from ...engines import eci
+from ...foundation import earth
 from ...foundation.caching import cached_copies
 from ...foundation.validation import check_choice, check_range, real_number
 from ...models.atmosphere import SOUND_SQUARED_PER_KELVIN
 from ...models.drag import ExponentialDragLaw
+from ...models.launch import Launch, Launches
 from ...models.projectiles import Projectile
 from ...models.sites import get_site
 from .appendices import FOOT_M, MUZZLE_SPEEDS_FILE, HarpDataError, load_appendix, load_muzzle_speeds
 
 __all__ = [
+    "gun_launch",
+    "round_corrections",
     "SPEED_STEP_FT_S",
     "PRINT_HALF_UNITS",
     "recover_muzzle_speeds",
@@ -90,19 +95,63 @@ _SPEED_HALF_UNIT_M_S = 5.0  # the appendices print Vo to 0.01 km/s
 _TOLERANCE_KM = 0.02  # the Cd0 A interval of Appendix E's Error column: every round this close
 
 
-def _site_launch(site, speed_m_s, mass_kg, drag_area, model, surface_density_kg_m3=None):
-    """The launch correction of rounds fired from ``site``'s gun, in its air (or another)."""
+@overload
+def gun_launch(site: str, projectile: Projectile, speed_m_s: float) -> Launch: ...
+@overload
+def gun_launch(site: str, projectile: Projectile, speed_m_s: np.ndarray) -> Launches: ...
+def gun_launch(site, projectile, speed_m_s):
+    """``projectile`` fired at ``speed_m_s`` (m/s; an array: one launch each) from ``site``'s
+    gun as Chapter 6 lays it: 85 deg along the gun's bearing from the site's latitude, the
+    Earth turning; eqs 2.1-2.2's air (the ECI MKS takes the site's, :func:`round_corrections`)."""
     launch_site = get_site(site)
-    density = surface_density_kg_m3
-    return eci.launch_correction(
+    laid = Launches(
+        projectile,
         speed_m_s,
-        launch_site.elevation_rad,
-        launch_site.gun_bearing_rad,
-        launch_site.latitude_rad,
-        drag_area_m2=drag_area,
-        mass_kg=mass_kg,
-        surface_density_kg_m3=launch_site.surface_density_kg_m3 if density is None else density,
-        model=model,
+        math.degrees(launch_site.elevation_rad),
+        bearing_deg=math.degrees(launch_site.gun_bearing_rad),
+        latitude_deg=math.degrees(launch_site.latitude_rad),
+        rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+    )
+    return laid if np.ndim(speed_m_s) else laid[0]
+
+
+#: The projectile of :func:`round_corrections`'s launches: the Martlet 2C (Mod 2) by name only,
+#: its numbers units, for none is read: each round's mass and the model's (or a fit's) Cd0 A
+#: are given to the ECI correction in place of the projectile's, and the launches carry the
+#: rounds' own muzzle speeds.
+_MARTLET_BY_NAME = Projectile(
+    "Martlet 2C (Mod 2), mass and Cd0 A given per round",
+    1.0,
+    1.0,
+    ExponentialDragLaw(0.0, 0.0, 1.0),
+    1.0,
+    "Ch. 6 and Appendices D-E: each round's mass, each model's Cd0 A",
+)
+
+
+def round_corrections(
+    site: str,
+    speed_m_s,
+    mass_kg,
+    drag_area_m2,
+    model: str | eci.EciModel = "dissertation",
+    surface_density_kg_m3=None,
+) -> eci.LaunchCorrection:
+    """The ECI corrections (:func:`eci.correction_for_launch`, under ``model``) of Martlet
+    rounds fired from ``site``'s gun (:func:`gun_launch`) at ``speed_m_s`` (m/s), each of
+    ``mass_kg`` with Cd0 A ``drag_area_m2`` (m^2), in the site's air or at
+    ``surface_density_kg_m3``: numbers or 1-D arrays, one per round, broadcasting together."""
+    if surface_density_kg_m3 is None:
+        surface_density_kg_m3 = get_site(site).surface_density_kg_m3
+    speed, mass, area, density = np.broadcast_arrays(
+        speed_m_s, mass_kg, drag_area_m2, surface_density_kg_m3
+    )
+    return eci.correction_for_launch(
+        gun_launch(site, _MARTLET_BY_NAME, speed),
+        model,
+        mass_kg=mass,
+        drag_area_m2=area,
+        surface_density_kg_m3=density,
     )
 
 
@@ -128,7 +177,7 @@ def recover_muzzle_speeds(site: str) -> pd.DataFrame:
         low = math.ceil((row.muzzle_speed_m_s - 5.0) / FOOT_M / SPEED_STEP_FT_S)
         high = math.floor((row.muzzle_speed_m_s + 5.0) / FOOT_M / SPEED_STEP_FT_S)
         candidates_ft_s = np.arange(low, high + 1) * SPEED_STEP_FT_S
-        launch = _site_launch(site, candidates_ft_s * FOOT_M, row.mass_kg, 0.0, eci.CONSISTENT)
+        launch = round_corrections(site, candidates_ft_s * FOOT_M, row.mass_kg, 0.0, eci.CONSISTENT)
         misfit = np.abs(launch.misalignment_rad - row.misalignment_angle_rad) / half_unit
         order = np.argsort(misfit)
         rows.append(
@@ -181,7 +230,7 @@ def launch_corrections(
     rounds = appendix_rounds(site)
     area = _check_drag_area(drag_area)
     area = drag_area_m2(model.name) if area is None else area
-    return _site_launch(
+    return round_corrections(
         site, rounds.muzzle_speed_m_s.to_numpy(), rounds.mass_kg.to_numpy(), area, model
     )
 
@@ -210,7 +259,7 @@ def beta_column_drag_area(
     def beta_per_area(area):
         """beta column / Cd0 A: constant, except through V_tangent's turn of the elevation."""
         return (
-            _site_launch(
+            round_corrections(
                 site, rounds.muzzle_speed_m_s.to_numpy(), rounds.mass_kg.to_numpy(), area, model
             ).beta_column
             / area
@@ -296,19 +345,27 @@ def drag_area_table() -> pd.DataFrame:
     return pd.DataFrame(rows, index=["fitted", "low", "high"]).T
 
 
-def martlet(mass_kg: float, launch_speed_m_s: float, model: str = "dissertation") -> Projectile:
+def martlet(
+    mass_kg: float,
+    launch_speed_m_s: float,
+    model: str = "dissertation",
+    drag_area: float | None = None,
+) -> Projectile:
     """A Martlet 2C (Mod 2) round as Chapter 6 flies it, for the simulations: a point mass of
-    ``mass_kg`` with ``model``'s constant drag area Cd0 A (:func:`drag_area_m2`), the MKS's
-    assumption. The text gives neither the Martlet's reference area nor how its drag changes
-    with Mach; only the product Cd0 A enters a flight whose Cd is constant, so the reference
-    area is Cd0 A and Cd is 1."""
+    ``mass_kg`` with ``model``'s constant drag area Cd0 A (:func:`drag_area_m2`), or
+    ``drag_area`` (m^2), the MKS's assumption. The text gives neither the Martlet's reference
+    area nor how its drag changes with Mach; only the product Cd0 A enters a flight whose Cd is
+    constant, so the reference area is Cd0 A and Cd is 1."""
+    own = drag_area is None
     return Projectile(
         f"Martlet 2C (Mod 2), {mass_kg:.4g} kg",
         mass_kg,
-        drag_area_m2(model),
+        drag_area_m2(model) if drag_area is None else drag_area,
         ExponentialDragLaw(0.0, 0.0, 1.0),
         launch_speed_m_s,
-        f"Ch. 6 and Appendices D-E: the {model} model's Cd0 A, constant",
+        "Ch. 6 and Appendices D-E: "
+        + (f"the {model} model's Cd0 A" if own else "a given Cd0 A")
+        + ", constant",
     )
 
 

@@ -180,8 +180,8 @@ def _apogees_m(
         else surface_density_kg_m3,
     )
     speed, mass, area, density = (np.ravel(array) for array in arrays)
-    launch = harp._site_launch(site, speed, mass, area, model, surface_density_kg_m3=density)
-    apogee = eci.solution_for(launch, warn=False).apogee_altitude("eq_6_4")
+    rounds = harp.round_corrections(site, speed, mass, area, model, surface_density_kg_m3=density)
+    apogee = eci.solution_for(rounds, warn=False).apogee_altitude("eq_6_4")
     return np.reshape(apogee, arrays[0].shape)
 
 

@@ -1,9 +1,9 @@
 """Single HARP rounds (Chapter 6 E, Figs 6.7-6.11): the ECI Modified Kepler trajectory of one
 round as an observer on the rotating Earth sees it, the slot for its radar track, and its figure.
 
-Trajectory. The round flies :func:`harp_analysis.engines.eci.eci_solution` from its appendix row
+Trajectory. The round flies :func:`harp_analysis.engines.eci.simulate_eci_mks` from its appendix row
 (mass, muzzle speed) and its site (latitude, gun bearing, 85 deg, surface density) with the
-Martlet's Cd0 A of :func:`apogees.martlet_drag_area_m2` and the model of
+Martlet's Cd0 A of :func:`apogees.drag_area_m2` and the model of
 :func:`apogees.predicted_apogees` (by default V_tangent included, ``decay="consistent"``), so its
 peak is that apogee. The MKS angular range theta is inertial: it lies in the plane of the launch
 "up" and the corrected inertial azimuth (~95 deg at Barbados for the 109 deg gun). The inertial
@@ -46,7 +46,7 @@ from ...foundation import earth
 from ...foundation.paths import HARP_DATA_DIR
 from ...foundation.validation import whole_number
 from ...models.sites import get_site
-from ...models.trajectory import MAX_ROWS, launch_frame, surface_ranges
+from ...models.trajectory import launch_frame, rotate_about_axis
 from . import apogees
 from .appendices import HarpDataError
 
@@ -87,50 +87,43 @@ def round_trajectory(
     model: str | eci.EciModel = "dissertation",
     drag_area_m2: float | None = None,
 ) -> pd.DataFrame:
-    """The ECI MKS of ``round_number`` fired from ``site``, launch to impact at ``n_points``
-    equal steps of angular range: ``time_s``, ``altitude_m``, ``inertial_range_m`` (R theta),
-    and on the rotating Earth ``ground_range_m`` (surface arc from the gun), ``downrange_m`` and
-    ``cross_range_m`` (along and right of the gun bearing) and ``radar_range_m`` (= the ground
-    range; module docstring). ``model`` and its Cd0 A (or ``drag_area_m2``) as in
-    :func:`apogees.predicted_apogees`, whose default it shares; the round flies its recovered exact
-    muzzle speed. ValueError for a round not in the site's appendix."""
-    n_points = whole_number(n_points, "n_points", low=2, high=MAX_ROWS)
+    """The ECI MKS of ``round_number`` fired from ``site`` (its table,
+    :func:`eci.simulate_eci_mks`, in the site's air), launch to impact at ``n_points`` equal
+    steps of angular range and the apogee: ``time_s``, ``altitude_m``, ``inertial_range_m``
+    (R theta), and on the rotating Earth ``ground_range_m`` (surface arc from the gun),
+    ``downrange_m`` and ``cross_range_m`` (along and right of the gun bearing) and
+    ``radar_range_m`` (= the ground range; module docstring). ``model`` and its Cd0 A (or
+    ``drag_area_m2``) as in :func:`apogees.predicted_apogees`, whose default it shares; the
+    round flies its recovered exact muzzle speed. ValueError for a round not in the site's
+    appendix."""
     launch_site, _, row = _round_row(site, round_number)
-    correction = eci.launch_correction(
-        row.muzzle_speed_m_s,
-        launch_site.elevation_rad,
-        launch_site.gun_bearing_rad,
-        launch_site.latitude_rad,
-        drag_area_m2=apogees.drag_area_m2(model) if drag_area_m2 is None else drag_area_m2,
-        mass_kg=row.mass_kg,
-        surface_density_kg_m3=launch_site.surface_density_kg_m3,
+    name = eci.get_model(model).name
+    area = apogees.drag_area_m2(model) if drag_area_m2 is None else drag_area_m2
+    speed = float(row.muzzle_speed_m_s)
+    launch = apogees.gun_launch(site, apogees.martlet(row.mass_kg, speed, name, area), speed)
+    flight = eci.simulate_eci_mks(
+        launch,
         model=model,
+        n_points=n_points,
+        surface_density_kg_m3=launch_site.surface_density_kg_m3,
+        warn=False,
     )
-    solution = eci.solution_for(correction, warn=False)
-    theta = np.linspace(0.0, solution.impact_angle, n_points)
-    sample = solution.sample(theta)
-    up, along_gun, _ = launch_frame(launch_site.latitude_rad, 0.0, launch_site.gun_bearing_rad)
-    radius = sample["altitude_m"] + earth.RADIUS_M
-    inertial = eci.inertial_positions(solution, correction, launch_site.latitude_rad, theta)
-    turn = -earth.ROTATION_RATE_RAD_S * sample["time_s"]
-    cos, sin = np.cos(turn), np.sin(turn)
-    fixed = np.column_stack(
-        [
-            cos * inertial[:, 0] - sin * inertial[:, 1],
-            sin * inertial[:, 0] + cos * inertial[:, 1],
-            inertial[:, 2],
-        ]
-    )
-    downrange, cross_range = surface_ranges(fixed, up, along_gun)
+    # the positions, inertial, turned into the Earth's axes at each time
+    time = flight.time_s.to_numpy()
+    inertial = flight[["x_m", "y_m", "z_m"]].to_numpy()
+    fixed = np.column_stack(rotate_about_axis(inertial.T, -launch.rotation_rate_rad_s * time))
+    up = np.ravel(launch_frame(launch_site.latitude_rad, 0.0, 0.0)[0])
+    radius = flight.altitude_m.to_numpy() + earth.RADIUS_M
     ground = earth.RADIUS_M * np.arccos(np.clip(fixed @ up / radius, -1.0, 1.0))
+    swept = np.arctan2(np.linalg.norm(np.cross(inertial, up), axis=1), inertial @ up)
     return pd.DataFrame(
         {
-            "time_s": sample["time_s"],
-            "altitude_m": sample["altitude_m"],
-            "inertial_range_m": sample["ground_range_m"],
+            "time_s": time,
+            "altitude_m": flight.altitude_m.to_numpy(),
+            "inertial_range_m": earth.RADIUS_M * swept,
             "ground_range_m": ground,
-            "downrange_m": downrange,
-            "cross_range_m": cross_range,
+            "downrange_m": flight.ground_range_m.to_numpy(),
+            "cross_range_m": flight.cross_range_m.to_numpy(),
             "radar_range_m": ground,
         }
     )
