@@ -1,6 +1,7 @@
 """The package works outside its checkout: a non-editable install into a fresh virtual
 environment imports every submodule and loads the HARP tables from any directory."""
 
+import shutil
 import subprocess
 import sys
 import sysconfig
@@ -39,6 +40,18 @@ print(len(names), "submodules")
 
 @pytest.mark.skipif(not (CHECKOUT / "pyproject.toml").is_file(), reason="needs the checkout")
 def test_wheel_installs_and_works_from_any_directory(tmp_path):
+    # The wheel is built from a copy of what it is made of: built in the checkout, setuptools
+    # would reuse its build/ folder and ship modules deleted since the last build.
+    sources = tmp_path / "sources"
+    for part in ("src", "data/harp"):
+        shutil.copytree(
+            CHECKOUT / part,
+            sources / part,
+            symlinks=True,
+            ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"),
+        )
+    for part in ("pyproject.toml", "README.md"):
+        shutil.copy(CHECKOUT / part, sources / part)
     wheels = tmp_path / "wheels"
     subprocess.run(
         [
@@ -51,7 +64,7 @@ def test_wheel_installs_and_works_from_any_directory(tmp_path):
             "--quiet",
             "--wheel-dir",
             str(wheels),
-            str(CHECKOUT),
+            str(sources),
         ],
         check=True,
         cwd=tmp_path,

@@ -4,7 +4,7 @@
 guesses. The names a user starts from are here; the package's own modules import from the
 submodules."""
 
-from .firing import TargetPoint, barbados_case, destination, firing_solutions
+from .firing import BARBADOS_HP, TargetPoint, barbados_case, destination, firing_solutions
 from .intercepts import intercept, intercept_window, raid, raid_roots, raid_windows
 from .verification import verify_with_3dof
 
@@ -15,6 +15,7 @@ __all__ = [
     "raid_roots",
     "raid",
     "barbados_case",
+    "BARBADOS_HP",
     "destination",
     "TargetPoint",
     "intercept",
