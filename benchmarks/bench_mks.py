@@ -6,8 +6,8 @@ its own beta and tau (eqs 3.22, 3.27). The references are straight-line numpy of
 three-term MKS (eqs 6.6-6.10, 6.13, 6.14):
 
 - at eq 6.4's angle, :func:`harp_analysis.analyses.effort.mks_apogee` (the operations Fig 4.7
-counts),   which computes beta and tau itself, and the same code handed them
-(:func:`handed_apogee`);
+  counts), which computes beta and tau itself, and the same code handed them
+  (:func:`handed_apogee`);
 - at the first zero of du/dtheta, one Newton step from eq 6.4's angle (:func:`first_zero`; the
   zero lies so near eq 6.4's angle on these launches that one step converges to 1e-16 rad);
 - a copy of the elevations: the memory-bound floor per launch.

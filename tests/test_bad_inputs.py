@@ -320,7 +320,6 @@ PROBES: dict[str, tuple[str, Err | Warned | Ok]] = {
     "comparison fly n_terms string": ("comparisons.fly(B45, n_terms='3')", Err("n_terms")),
     "comparison fly launch list": ("comparisons.fly([B45])", Err("launch")),
     "improvement earth": ("mks_improvement.judged_rms('mars')", Err("earth")),
-    "improvement measure": ("mks_improvement.judged_improvement('range_m')", Err("measure")),
     "mlt validation projectile": ("mlt_validation.method_comparison('XX')", Err("projectile")),
     # --- scenarios and the registry -----------------------------------------------------------
     "scenario projectile": ("scenarios.reference_launch('XX')", Err("unknown projectile 'XX'")),
@@ -332,7 +331,6 @@ PROBES: dict[str, tuple[str, Err | Warned | Ok]] = {
     "scenario 6dof density altitude": ("scenarios.fly_6dof(HP_CHAPTER_2, density_altitude=['flat'])", Err("density_altitude")),
     "scenario drag ratio": ("scenarios.drag_to_gravity_crossing_altitude_km('HP', ratio=nan)", Err("ratio")),
     "scenario loss altitude": ("scenarios.angular_momentum_loss_share_below('HP', altitude_km='20')", Err("altitude_km must be a real number")),
-    "scenario drag above apogee": ("scenarios.max_drag_to_gravity_above('HP', altitude_km=1e4)", Err("altitude_km must lie in")),
     "scenario gravity string": ("scenarios.launch_drag_to_gravity('HP', gravity_m_s2='9.8')", Err("gravity_m_s2 must be a real number")),
     "scenario drag to weight": ("scenarios.launch_drag_to_gravity('HP')", Ok("1.0 < r < 1e3")),
     "registry number": ("registry.get_entry('99.9')", Err("'99.9' is not in the figure registry")),

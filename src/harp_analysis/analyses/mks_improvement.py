@@ -12,7 +12,7 @@ judging set (:data:`JUDGING`) shares no launch with the training set (:data:`TRA
 elevations, other projectiles (HP and LP, without Chapter 2's wind and spin, which no MKS
 models), and rotating-Earth launches at bearings and latitudes off the training grid. The
 baseline's still-Earth elevations sit between the training ones (an interpolation); HP, LP and
-the rotating-Earth launches are the harder test, and :func:`judged_improvement` reports them
+the rotating-Earth launches are the harder test, and :func:`judged_rms` reports them
 apart.
 """
 
@@ -55,7 +55,6 @@ __all__ = [
     "error_map",
     "impact_time_error_s",
     "judged_rms",
-    "judged_improvement",
     "map_shares",
     "error_differences_m",
     "BROAD_SPEEDS_M_S",
@@ -309,14 +308,6 @@ def judged_rms(earth: str = "both") -> pd.DataFrame:
         judged = judged[judged.rotating == (earth == "turning")]
     measures = list(LaunchErrors.__dataclass_fields__)
     return judged.groupby("variant")[measures].agg(lambda v: float(np.sqrt(np.mean(v**2))))
-
-
-def judged_improvement(measure: str = "impact_miss_m", earth: str = "both") -> float:
-    """:func:`judged_rms` of ``measure``, the improved MKS's over the dissertation's: below 1,
-    the improved one is better on launches it was not fitted to."""
-    check_choice(measure, "measure", tuple(LaunchErrors.__dataclass_fields__))
-    rms = judged_rms(earth)[measure]
-    return float(rms["improved"] / rms["dissertation"])
 
 
 def map_shares(

@@ -40,7 +40,6 @@ __all__ = [
     "launch_drag_to_gravity",
     "drag_to_gravity_crossing_altitude_km",
     "drag_to_gravity_crossings",
-    "max_drag_to_gravity_above",
     "angular_momentum_loss_share_below",
     "angular_momentum_change_above",
     "launch_energy_mj",
@@ -207,13 +206,6 @@ def drag_to_gravity_crossings(flight: pd.DataFrame, ratios) -> pd.DataFrame:
     rows = {ratio: _first_below(rising, _positive(ratio, "ratio")) for ratio in ratios}
     crossed = {ratio: i for ratio, i in rows.items() if i}
     return rising.iloc[list(crossed.values())].set_axis(pd.Index(list(crossed), name="ratio"))
-
-
-def max_drag_to_gravity_above(projectile: str, altitude_km: float = 40.0) -> float:
-    """Largest N anywhere along the flight above ``altitude_km`` (Chapter 2 A's 1 % claim)."""
-    flight = reference_3dof(projectile)
-    above = flight.altitude_m > _altitude_km(altitude_km, flight) * 1e3
-    return float(flight.drag_to_gravity[above].max())
 
 
 def angular_momentum_loss_share_below(projectile: str, altitude_km: float = 20.0) -> float:

@@ -8,13 +8,13 @@ module may rely on the current directory.
   copy in an installed wheel), found through :mod:`importlib.resources`. They load wherever the
   package is installed.
 - ``ROOT`` and the folders under it (``COMMITTED_FIGURES_DIR``, ``NOTEBOOKS_DIR``,
-  ``REGISTRY_DIR``, ``DATA_DIR``): the repository checkout, found from this file's location (an
+  ``REGISTRY_DIR``): the repository checkout, found from this file's location (an
   editable install from ``src/``) or the environment variable ``HARP_ANALYSIS_ROOT``. Only the
   figure registry, the ledger and ``make figures`` need them; asking for one without a checkout
   raises a RuntimeError that says how to point at one.
-- ``FIGURES_DIR``: where :func:`harp_analysis.reporting.plotting.save_figure` writes. It is the
-folder   ``HARP_ANALYSIS_FIGURES_DIR`` names, which ``make figures`` sets to the committed
-``figures/``;   without it, the user's own scratch folder in the system's temporary directory
+- ``FIGURES_DIR``: where :func:`harp_analysis.reporting.plotting.save_figure` writes. It is
+  the folder ``HARP_ANALYSIS_FIGURES_DIR`` names, which ``make figures`` sets to the committed
+  ``figures/``; without it, the user's own scratch folder in the system's temporary directory
   (``harp-analysis-figures-<uid>``, readable by its owner only), so running or editing a
   notebook never overwrites the committed figures unless asked to, and users of one machine
   never share it.
@@ -30,7 +30,6 @@ from pathlib import Path
 
 __all__ = [  # noqa: F822 (the checkout folders are served by __getattr__ below)
     "ROOT",
-    "DATA_DIR",
     "HARP_DATA_DIR",
     "FIGURES_DIR",
     "COMMITTED_FIGURES_DIR",
@@ -51,7 +50,6 @@ def _find_root() -> Path | None:
 _ROOT = _find_root()
 _IN_CHECKOUT = {
     "ROOT": lambda root: root,
-    "DATA_DIR": lambda root: root / "data",
     "COMMITTED_FIGURES_DIR": lambda root: root / "figures",
     "NOTEBOOKS_DIR": lambda root: root / "notebooks",
     "REGISTRY_DIR": lambda root: root / "registry",

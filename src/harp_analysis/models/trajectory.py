@@ -45,7 +45,6 @@ __all__ = [
     "TruncatedFlightWarning",
     "describe",
     "launch_frame",
-    "cross_product",
     "rotate_about_axis",
     "turned_about_axis",
     "surface_ranges",
@@ -215,12 +214,6 @@ def describe(
         **extra,
     )
     return frame
-
-
-def cross_product(a, b):
-    """The cross product of 3-vectors along the first axis, (3, ...) each: ``np.cross(a, b,
-    axis=0)`` without its generality (a tenth of its time on a launch's vectors)."""
-    return np.array(cross(a, b))
 
 
 @formula

@@ -30,9 +30,9 @@ from ...foundation.sweeps import sweep
 from ...foundation.validation import check_choice, check_range, finite_array, real_number
 from ...models.launch import Launch, Launches
 from ...models.trajectory import TruncatedFlightWarning
-from .firing import FiringSolution, TargetPoint, destination, firing_solutions
+from .firing import destination, firing_solutions
 
-__all__ = ["ROOTS", "MAP_COLUMNS", "three_dof_miss", "miss_map"]
+__all__ = ["ROOTS", "MAP_COLUMNS", "miss_map"]
 
 ROOTS = ("low", "high")
 #: The columns of :func:`miss_map`, one row per intercept point.
@@ -54,17 +54,11 @@ MAP_COLUMNS = (
 )
 
 
-def three_dof_miss(
-    gun: Launch, target: TargetPoint, solution: FiringSolution, *, rtol: float = 1e-9
-) -> float:
-    """The 3DOF (the gun's atmosphere, drag law and Earth rotation) fired once at the firing
-    ``solution``: the distance (m) from where it crosses the target's altitude on the
-    solution's branch to the target; NaN if it never gets there (within the 3DOF's time)."""
-    return float(_three_dof_misses(gun, [target], [solution], rtol)[0])
-
-
 def _three_dof_misses(gun: Launch, targets, solutions, rtol: float) -> np.ndarray:
-    """:func:`three_dof_miss` of every (target, solution) pair, flown as one 3DOF batch."""
+    """The 3DOF (the gun's atmosphere, drag law and Earth rotation) fired once at each firing
+    solution, flown as one batch: the distance (m) from where it crosses its target's altitude
+    on the solution's branch to the target; NaN if it never gets there (within the 3DOF's
+    time)."""
     laid = Launches.from_launches([gun]).but(
         elevation_deg=np.array([s.elevation_deg for s in solutions]),
         bearing_deg=np.array([s.bearing_deg for s in solutions]),
