@@ -51,7 +51,7 @@ def test_starts_at_gun_and_peaks_at_eq_6_4_apogee(round_181):
 
 def test_earth_fixed_range_lags_inertial_by_site_motion(round_181):
     """R theta - ground range ~ omega R cos(lat) t along the inertial azimuth (within 5%)."""
-    _, _, row = harp_rounds._round_row("barbados", 181)
+    _, _, row = harp_rounds.round_row("barbados", 181)
     azimuth = eci.launch_correction(
         row.muzzle_speed_m_s,
         BARBADOS.elevation_rad,
@@ -81,7 +81,7 @@ def test_earth_fixed_range_lags_inertial_by_site_motion(round_181):
 def test_splash_range_is_the_great_circle_to_the_moved_site():
     """Independently of the module: the MKS impact point in the inertial frame and the gun site
     carried round by the Earth during the flight are a great-circle distance apart."""
-    _, _, row = harp_rounds._round_row("barbados", 181)
+    _, _, row = harp_rounds.round_row("barbados", 181)
     options = dict(
         drag_area_m2=harp.drag_area_m2(),
         mass_kg=row.mass_kg,

@@ -54,6 +54,7 @@ __all__ = [
     "RADAR_DIR",
     "RADAR_NAMES",
     "TEXT_SPLASH_RANGES_KM",
+    "round_row",
     "round_trajectory",
     "splash_range_km",
     "splash_error",
@@ -69,7 +70,9 @@ TEXT_SPLASH_RANGES_KM = {181: {"text's MKS": 39.6, "observed splash": 41.1}}
 _KM = 1e3
 
 
-def _round_row(site, round_number):
+def round_row(site: str, round_number: int):
+    """The site, the round's number and its row of the appendix (:func:`apogees.appendix_rounds`);
+    a ValueError naming the round if the site's table has no such round."""
     launch_site = get_site(site)
     number = whole_number(round_number, "round_number", low=1)
     table = apogees.appendix_rounds(launch_site.name)
@@ -96,7 +99,7 @@ def round_trajectory(
     ``drag_area_m2``) as in :func:`apogees.predicted_apogees`, whose default it shares; the
     round flies its recovered exact muzzle speed. ValueError for a round not in the site's
     appendix."""
-    launch_site, _, row = _round_row(site, round_number)
+    launch_site, _, row = round_row(site, round_number)
     name = eci.get_model(model).name
     area = apogees.drag_area_m2(model) if drag_area_m2 is None else drag_area_m2
     speed = float(row.muzzle_speed_m_s)

@@ -1,5 +1,6 @@
 """The figures of Chapter 6: the apogee residuals of every round (Figs 6.5, 6.6), reporting on
-:mod:`.harp`, and single HARP rounds (Figs 6.7-6.11), reporting on :mod:`.harp_rounds`."""
+:mod:`harp_analysis.analyses.harp.apogees`, and single HARP rounds (Figs 6.7-6.11), reporting on
+:mod:`harp_analysis.analyses.harp.rounds`."""
 
 from __future__ import annotations
 
@@ -9,8 +10,7 @@ import numpy as np
 from matplotlib.patches import Patch
 from matplotlib.ticker import MultipleLocator
 
-from ...analyses.harp import apogees
-from ...analyses.harp import rounds as harp_rounds
+from ...analyses.harp import apogees, rounds
 from ..plotting import FULL_WIDTH_IN, OKABE_ITO, new_figure, style
 
 __all__ = ["draw_residual_figure", "draw_round_figure"]
@@ -80,9 +80,9 @@ def draw_round_figure(site: str, round_number: int):
     markers (one shape per radar), the measured apogee a black dashed line, and where the text
     gives them (round 181) its MKS range (grey cross) and the observed splash (black triangle),
     enlarged in an inset; one legend below both panels, clear of the curves."""
-    launch_site, number, row = harp_rounds._round_row(site, round_number)
-    trajectory = harp_rounds.round_trajectory(site, number)
-    radar = harp_rounds.load_radar_track(site, number)
+    launch_site, number, row = rounds.round_row(site, round_number)
+    trajectory = rounds.round_trajectory(site, number)
+    radar = rounds.load_radar_track(site, number)
     fig, (by_time, by_range) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 3.6), layout="constrained")
     altitude_km = trajectory.altitude_m / 1e3
     mks = {**style("MKS"), "lw": 2.2}
@@ -105,7 +105,7 @@ def draw_round_figure(site: str, round_number: int):
         )
         axes.set_ylim(bottom=0.0, top=1.12 * max(row.apogee_m, trajectory.altitude_m.max()) / 1e3)
     splashes = (
-        harp_rounds.TEXT_SPLASH_RANGES_KM.get(number, {}) if launch_site.name == "Barbados" else {}
+        rounds.TEXT_SPLASH_RANGES_KM.get(number, {}) if launch_site.name == "Barbados" else {}
     )
     if splashes:  # the splash markers sit a marker's width apart: enlarged in an inset
         zoom = by_range.inset_axes([0.25, 0.13, 0.44, 0.36])
