@@ -577,8 +577,8 @@ def harp_spread_interval_over_model_error(
 ) -> SpreadOverModelError:
     """:func:`harp_spread_over_model_error` with the spread's sampling uncertainty: the
     residuals' standard deviation with its ``confidence`` interval
-    (:func:`harp_confidence.std_interval`, 22 rounds) over the same model error, and how often
-    such an interval holds the truth at a site's rounds (:func:`harp_confidence.coverage`)."""
+    (:func:`confidence.std_interval`, 22 rounds) over the same model error, and how often
+    such an interval holds the truth at a site's rounds (:func:`confidence.coverage`)."""
     spread = harp_confidence.residual_intervals(site, confidence=confidence).loc["std"]
     return SpreadOverModelError(
         site,

@@ -26,7 +26,7 @@ from Vrel: drag drains the air-relative velocity and leaves the projectile movin
 air, turning V further from the gun line (lower and more eastward for an eastward shot), and mu
 grows. Rotating V back toward Vrel would need a force with a component along +Vrel, which drag
 has not. The printed Appendix D/E columns do not include V_tangent at all (see
-:func:`harp.appendix_columns`, model ``"printed_columns"`` and :data:`PRINTED_COLUMNS`).
+:func:`apogees.appendix_columns`, model ``"printed_columns"`` and :data:`PRINTED_COLUMNS`).
 
 The printed equations, checked: eq 5.3 is exact, not an expansion, if Vx is the eastward
 component of the inertial V (omega x r is due east, of size omega r cos LA). Eqs 6.6-6.10 are
@@ -434,7 +434,7 @@ CONSISTENT = EciModel(
     speed_ratio="corrected",
     decay="consistent",
 )
-#: The dissertation's own pipeline, recovered from Appendix E's Error column (:mod:`.harp`).
+#: The dissertation's own pipeline, recovered from Appendix E's Error column (:mod:`.apogees`).
 DISSERTATION = EciModel(
     "dissertation",
     include_tangent=True,

@@ -16,7 +16,7 @@ from ...foundation import earth
 from ...foundation.validation import check_choice
 from ...models.launch import baseline_chapter_4
 from .. import scenarios
-from ..harp import apogees as harp
+from ..harp import apogees
 
 __all__ = [
     "appendix_column_share_within_rounding",
@@ -28,8 +28,8 @@ __all__ = [
 def appendix_column_share_within_rounding(site: str = "barbados", column: str = "mach") -> float:
     """Share of the distinct rounds of Appendix D or E whose printed ``column`` the package
     recomputes (dissertation model) to within half a unit of the last printed digit
-    (:func:`harp.column_agreement`)."""
-    table = harp.column_agreement(site)
+    (:func:`apogees.column_agreement`)."""
+    table = apogees.column_agreement(site)
     check_choice(column, "column", tuple(table.index))
     return float(table.rounds_within[column] / table.rounds[column])
 

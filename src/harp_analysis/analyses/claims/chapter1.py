@@ -22,7 +22,7 @@ from ...models.atmosphere import standard_density
 from ...models.launch import HP_CHAPTER_2
 from ...models.projectiles import get_projectile
 from .. import effort
-from ..harp import apogees as harp
+from ..harp import apogees
 from ..scenarios import fly_3dof
 from .launches import no_wind
 
@@ -173,7 +173,7 @@ def max_measured_apogee_km(site: str = "yuma") -> float:
     "both"): Ch. 1 B's "HARP succeeded in placing a projectile to 180 km"."""
     check_choice(site, "site", ("barbados", "yuma", "both"))
     sites = ("barbados", "yuma") if site == "both" else (site,)
-    return max(float(harp.appendix_rounds(s).apogee_m.max()) for s in sites) / 1e3
+    return max(float(apogees.appendix_rounds(s).apogee_m.max()) for s in sites) / 1e3
 
 
 def mlt_over_3dof_orders(segment_length_m: float = 1000.0) -> float:

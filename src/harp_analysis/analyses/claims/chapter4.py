@@ -23,7 +23,7 @@ from ...foundation.validation import ModelValidityWarning, check_choice, check_r
 from ...models.projectiles import BASELINE
 from .. import rotating, scenarios
 from ..comparisons import BASELINE_ELEVATIONS_DEG, VARIANTS, case, fly, launch_error_at_apogee_km
-from ..harp import apogees as harp
+from ..harp import apogees
 from .launches import no_wind
 
 __all__ = [
@@ -85,7 +85,7 @@ def spread_over_mks_error(
     """Standard deviation of the apogee residuals at ``site`` (dissertation model) over the ECI
     MKS's error at apogee against the rotating 3DOF for the baseline fired at
     ``elevation_deg`` on ``bearing_deg`` from ``latitude_deg`` (Ch. 5's 85 deg east case)."""
-    spread = harp.residual_statistic(site, "std")
+    spread = apogees.residual_statistic(site, "std")
     return spread / rotating.error_at_apogee_km(latitude_deg, bearing_deg, elevation_deg)
 
 

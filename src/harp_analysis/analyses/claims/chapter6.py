@@ -13,7 +13,7 @@ import numpy as np
 from ...engines import eci
 from ...foundation.validation import check_choice, check_range, finite_scalar
 from ...models.atmosphere import DRY_AIR_GAS_CONSTANT_J_KG_K
-from ..harp import apogees as harp
+from ..harp import apogees
 
 __all__ = [
     "STANDARD_PRESSURE_PA",
@@ -34,7 +34,7 @@ STANDARD_PRESSURE_PA = 101_325.0
 # --- Chapter 6: the HARP apogees ------------------------------------------------------------------
 def min_measured_apogee_km(site: str = "barbados") -> float:
     """Lowest measured apogee (km) among the appendix rows of ``site``."""
-    return float(harp.appendix_rounds(site).apogee_m.min()) / 1e3
+    return float(apogees.appendix_rounds(site).apogee_m.min()) / 1e3
 
 
 def apogee_drive_ratio(site: str = "barbados", model: str = "dissertation") -> float:
@@ -60,7 +60,7 @@ def apogee_simplification_shift_km(site: str = "barbados", model: str = "dissert
 
 def harp_solution(site: str, model: str = "dissertation"):
     """The three-term ECI MKS of every appendix row of ``site`` under ``model``."""
-    return eci.solution_for(harp.launch_corrections(site, model), warn=False)
+    return eci.solution_for(apogees.launch_corrections(site, model), warn=False)
 
 
 def fahrenheit_to_kelvin(temperature_f: float) -> float:
@@ -85,11 +85,11 @@ def site_density_kg_m3(
 ) -> float:
     """Sea-level dry-air density (kg/m^3) at ``site`` at standard pressure, at the temperature
     of the speed of sound behind the appendix's Mach column (``source="mach_column"``,
-    :func:`harp.speed_of_sound`) or at ``temperature_f`` (``"temperature"``; Ch. 6 C gives
+    :func:`apogees.speed_of_sound`) or at ``temperature_f`` (``"temperature"``; Ch. 6 C gives
     Barbados 80 F by day and 70 F by night)."""
     check_choice(source, "source", ("mach_column", "temperature"))
     if source == "mach_column":
-        temperature = harp.air_temperature_k(harp.speed_of_sound(site)[0])
+        temperature = apogees.air_temperature_k(apogees.speed_of_sound(site)[0])
     else:
         temperature = fahrenheit_to_kelvin(temperature_f)
     return density_at_temperature_kg_m3(temperature)

@@ -33,7 +33,7 @@ from ...models.launch import Launch
 from ...models.projectiles import HP
 from ...models.sites import BARBADOS
 from ...models.trajectory import launch_frame
-from . import solver as firing_solver
+from . import solver
 
 __all__ = [
     "TargetPoint",
@@ -173,7 +173,7 @@ class FiringSolutions:
 
 
 class _Gun:
-    """A gun as the compiled solver reads it (:mod:`.firing_solver`): speed, latitude, and what
+    """A gun as the compiled solver reads it (:mod:`.solver`): speed, latitude, and what
     its ECI correction (:func:`eci.correction_for_launch`) makes of its projectile and air:
     Cd0 A, mass, eq 3.11's rho0 at the gun, k and the Earth's rotation; and the ECI model's
     flags. The solver lays the gun at its own elevations and bearings."""
@@ -293,15 +293,15 @@ def _missing(status: int, side: int, search: np.ndarray, distance_km: float, row
     and ``search``; every range quoted is Earth-fixed ground range along the great circle."""
     name = ("low", "high")[side]
     peak, reach, lowest, lowest_m, highest, highest_m, _ = search
-    if status == firing_solver.BELOW_LOWEST:
-        searched = "searched" if lowest <= firing_solver.LOWEST_ELEVATION_RAD else "can fly"
+    if status == solver.BELOW_LOWEST:
+        searched = "searched" if lowest <= solver.LOWEST_ELEVATION_RAD else "can fly"
         return (
             f"no low-angle root: the lowest elevation the MKS {searched} to it, "
             f"{_elevation_deg(lowest)}, already reaches {lowest_m / 1e3:.1f} km, beyond the "
             f"target's {distance_km:.1f} km"
         )
-    if status == firing_solver.ABOVE_HIGHEST:
-        searched = "searched" if highest >= firing_solver.HIGHEST_ELEVATION_RAD else "can fly"
+    if status == solver.ABOVE_HIGHEST:
+        searched = "searched" if highest >= solver.HIGHEST_ELEVATION_RAD else "can fly"
         return (
             f"no high-angle root: the highest elevation the MKS {searched} to it, "
             f"{_elevation_deg(highest)}, still reaches {highest_m / 1e3:.1f} km, beyond the "
@@ -327,7 +327,7 @@ def _solutions(
     longitude = np.radians([target.longitude_deg - gun.longitude_deg for target in targets])
     altitude = np.array([target.altitude_m for target in targets], dtype=float)
     descending = np.full(count, branch == "descending")
-    roots, status, search, counts = firing_solver.solve(
+    roots, status, search, counts = solver.solve(
         laid.numbers, laid.flags, latitude, longitude, altitude, descending
     )
     results = []
@@ -346,16 +346,16 @@ def _solutions(
             continue
         both = int(status[i, 0]) if status[i, 0] == status[i, 1] else -1
         reason = {
-            firing_solver.NO_TRAJECTORY: (
+            solver.NO_TRAJECTORY: (
                 f"above the maximum altitude: no MKS trajectory between "
-                f"{_elevation_deg(firing_solver.LOWEST_ELEVATION_RAD)} and "
-                f"{_elevation_deg(firing_solver.HIGHEST_ELEVATION_RAD)} of elevation reaches "
+                f"{_elevation_deg(solver.LOWEST_ELEVATION_RAD)} and "
+                f"{_elevation_deg(solver.HIGHEST_ELEVATION_RAD)} of elevation reaches "
                 f"{target.altitude_m / 1e3:g} km on the {branch} branch"
             ),
-            firing_solver.ALL_ESCAPE: (
+            solver.ALL_ESCAPE: (
                 "the MKS escapes at every elevation: the muzzle speed exceeds escape speed"
             ),
-            firing_solver.BEYOND_RANGE: (
+            solver.BEYOND_RANGE: (
                 f"beyond the maximum range: the target is {distance_km:.1f} km away along the "
                 f"ground, the gun reaches at most {search[i, 1] / 1e3:.1f} km toward it at "
                 f"{target.altitude_m / 1e3:g} km altitude (at "
@@ -369,7 +369,7 @@ def _solutions(
         reasons = []
         for side in range(2):
             row = roots[i, side]
-            if status[i, side] != firing_solver.FOUND:
+            if status[i, side] != solver.FOUND:
                 found.append(None)
                 reasons.append(_missing(status[i, side], side, search[i], distance_km, row))
                 continue
@@ -388,7 +388,7 @@ def _solutions(
 def _root(
     row, target: TargetPoint, branch: str, limits
 ) -> tuple[FiringSolution | None, str | None]:
-    """The FiringSolution of a solver's root ``row`` (:data:`.firing_solver.SOLUTION_FIELDS`),
+    """The FiringSolution of a solver's root ``row`` (:data:`.solver.SOLUTION_FIELDS`),
     or None and why where the bearing limits or the arrival time rule it out."""
     elevation, bearing, time, miss, beta, apogee, evaluations = row[:7]
     bearing_deg = math.degrees(bearing) % 360.0
@@ -437,7 +437,7 @@ def firing_solutions(gun, targets, *, bearing_limits_deg=None, branch="descendin
     """The low-angle and high-angle firing solutions of ``gun`` (a Launch: its projectile,
     speed, site and Earth rotation; its elevation and bearing are ignored) onto ``targets``
     (one TargetPoint, or a sequence of them: one result each, solved together by the compiled
-    solver of :mod:`.firing_solver`, the same answers either way), meeting each on the
+    solver of :mod:`.solver`, the same answers either way), meeting each on the
     trajectory's ``branch`` ("descending" or "ascending"). The bearing is limited to the arc
     turning clockwise from bearing_limits_deg[0] to [1] if given. A target out of reach is a
     result with no roots and the reason, not an exception."""

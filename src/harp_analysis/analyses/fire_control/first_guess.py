@@ -45,7 +45,7 @@ from ...foundation.validation import ModelValidityWarning, check_choice, check_r
 from ...models.launch import Launch
 from ...models.sites import YUMA
 from ...models.trajectory import rotate_about_axis
-from . import firing as fire_control
+from . import firing
 from .firing import FiringSolution, TargetPoint
 from .verification import verify_with_3dof
 
@@ -68,8 +68,8 @@ ROOTS = ("low", "high")
 #: The two guns: Barbados's HP (:data:`.fire_control.BARBADOS_HP`) and the same gun at Yuma's
 #: latitude (Ch. 6 D) and longitude (about 114.4 deg W).
 GUNS: dict[str, Launch] = {
-    "Barbados": fire_control.BARBADOS_HP,
-    "Yuma": fire_control.BARBADOS_HP.but(
+    "Barbados": firing.BARBADOS_HP,
+    "Yuma": firing.BARBADOS_HP.but(
         latitude_deg=math.degrees(YUMA.latitude_rad), longitude_deg=-114.4
     ),
 }
@@ -172,7 +172,7 @@ def _residual(flight, target: TargetPoint, branch: str, aim: np.ndarray):
     turned = rotate_about_axis(
         inertial[:, None], np.array([-flight.launch.rotation_rate_rad_s * when])
     )
-    return fire_control.east_north(turned[:, 0] - aim, aim), when
+    return firing.east_north(turned[:, 0] - aim, aim), when
 
 
 def improved_miss(
@@ -185,8 +185,8 @@ def improved_miss(
     """The improved MKS's miss (m) at ``target`` flown at ``solution``'s elevation and bearing
     (where it crosses the target's radius on the solution's branch, Earth-fixed); NaN if it
     never gets there."""
-    gun = fire_control.check_gun(gun)
-    target = fire_control.check_target(target)
+    gun = firing.check_gun(gun)
+    target = firing.check_target(target)
     if not isinstance(solution, FiringSolution):
         raise TypeError(f"solution must be a FiringSolution; got {type(solution).__name__}")
     _check_branch(solution, target)
@@ -216,8 +216,8 @@ def improved_solution(
     it does not converge, or the improved MKS has no solution on the way (its re-entry decay
     diverges on some westward shots). A ModelValidityWarning where the root lies outside the
     improved MKS's band of :func:`.mks_improved.air_momentum_share`."""
-    gun = fire_control.check_gun(gun)
-    target = fire_control.check_target(target)
+    gun = firing.check_gun(gun)
+    target = firing.check_target(target)
     solution = _check_solution(solution, target)
     if isinstance(iterations, bool) or not isinstance(iterations, int | np.integer):
         raise TypeError(f"iterations must be an integer; got {type(iterations).__name__}")
@@ -312,7 +312,7 @@ def _check_guns(guns) -> dict[str, Launch]:
             raise TypeError(f"guns' keys must be site names (str); got {name!r}")
         if not isinstance(gun, Launch):
             raise TypeError(f"guns[{name!r}] must be a Launch; got {type(gun).__name__}")
-        fire_control.check_gun(gun)
+        firing.check_gun(gun)
     return dict(guns)
 
 
@@ -332,7 +332,7 @@ def _row_points(gun: Launch, bearings, downranges, altitudes):
         for downrange in downranges
         for altitude in altitudes
     ]
-    targets = [fire_control.destination(gun, *point) for point in points]
+    targets = [firing.destination(gun, *point) for point in points]
     return points, targets
 
 
@@ -378,7 +378,7 @@ def compare_first_guesses(
     bearings = _check_values(bearings_deg, "bearings_deg", low=0.0, high=360.0, unit="deg")
     downranges = _check_values(downranges_m, "downranges_m", low=0.0, low_inclusive=False)
     altitudes = _check_values(altitudes_m, "altitudes_m", low=0.0, unit="m")
-    branch = check_choice(branch, "branch", fire_control.BRANCHES)
+    branch = check_choice(branch, "branch", firing.BRANCHES)
     if not isinstance(calibration, mks_improved.Calibration):
         raise TypeError(f"calibration must be a Calibration; got {type(calibration).__name__}")
     mks_improved.warm_up()
@@ -386,12 +386,12 @@ def compare_first_guesses(
     flights = seconds = 0.0
     for site, gun in guns.items():
         points, targets = _row_points(gun, bearings, downranges, altitudes)
-        fire_control.firing_solutions(gun, targets[:1], branch=branch)  # the kernels loaded
+        firing.firing_solutions(gun, targets[:1], branch=branch)  # the kernels loaded
         # (point, target, root name, MKS root, improved root, MKS time, improved time, reason)
         entries = []
         for point, target in zip(points, targets):
             start = time.perf_counter()
-            solutions = fire_control.firing_solutions(gun, target, branch=branch)
+            solutions = firing.firing_solutions(gun, target, branch=branch)
             mks_time = (time.perf_counter() - start) / max(len(solutions.roots), 1)
             for name in ROOTS:
                 root = getattr(solutions, name)

@@ -21,7 +21,7 @@ Models (:data:`harp_analysis.engines.eci.MODELS`), each with the drag area it fi
   reproduction draws what the dissertation computed, and the other models are compared with it.
   Every other reading of the three choices that set its predictions (eq 5.8's sine, tau's
   elevation, eq 5.3's V), each fitted to the same column, and which of them Appendix E tells
-  apart: :mod:`.harp_identification`.
+  apart: :mod:`.identification`.
 - ``"consistent"``: the project's reading (eqs 5.8 and 6.11-6.15 as printed, the decay made
   consistent with eq 3.23), Cd0 A from Appendix D's Beta column read as eq 6.11 at the launch
   elevation of the same model.
@@ -215,7 +215,7 @@ def _appendix_rounds(site: str) -> pd.DataFrame:
 
 
 def appendix_rounds(site: str) -> pd.DataFrame:
-    """The appendix of ``site`` as printed (every row, :func:`harp_data.load_appendix`), with
+    """The appendix of ``site`` as printed (every row, :func:`appendices.load_appendix`), with
     ``muzzle_speed_m_s`` the recovered exact speed and ``printed_muzzle_speed_m_s`` the printed
     one. A copy: editing it changes nothing else."""
     return _appendix_rounds(get_site(site).name.lower())
@@ -296,7 +296,7 @@ def fit_drag_area_to_errors(
     model: str | eci.EciModel = "dissertation",
 ) -> tuple[float, float, float]:
     """Cd0 A (m^2) that Appendix E's Error column implies through ``model`` (the dissertation
-    model's own, or any other reading of the open choices, :mod:`.harp_identification`):
+    model's own, or any other reading of the open choices, :mod:`.identification`):
     (least squares, lowest, highest value keeping every Yuma round within 0.02 km; NaN bounds
     when no Cd0 A does)."""
     model = eci.get_model(model)

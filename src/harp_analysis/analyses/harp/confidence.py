@@ -1,9 +1,9 @@
-"""HARP with confidence (issue 17): how sure the apogee residuals of :mod:`.harp` are, how much of
-their scatter the known input uncertainties explain, the Martlet's Cd0 A fitted to both sites
+"""HARP with confidence (issue 17): how sure the apogee residuals of :mod:`.apogees` are, how much
+of their scatter the known input uncertainties explain, the Martlet's Cd0 A fitted to both sites
 with its uncertainty, and whether the Barbados drag transfers to Yuma once each site's air
 follows its temperature.
 
-Conventions of :mod:`.harp`: the distinct rounds (Barbados 22 of Appendix D's 23 printed rows,
+Conventions of :mod:`.apogees`: the distinct rounds (Barbados 22 of Appendix D's 23 printed rows,
 Yuma 22), residual = measured - predicted apogee, the ECI MKS of the ``"dissertation"`` model
 by default. SI inside (m, kg, m/s, m^2).
 
@@ -19,12 +19,12 @@ bootstrap intervals (:func:`scipy.stats.bootstrap`, BCa), deterministic given ``
 statistics have no closed form; at n = 22 a BCa interval of a mean covers a little below
 nominal, as :func:`coverage_table` shows.
 
-Surface density. :mod:`.harp` flies each site at ``sites.LaunchSite.surface_density_kg_m3``:
+Surface density. :mod:`.apogees` flies each site at ``sites.LaunchSite.surface_density_kg_m3``:
 Barbados at the 1976 standard's 1.225 kg/m^3 (Ch. 6 C), Yuma at the text's 1.14 kg/m^3
 (Ch. 6 D, an evening average of the NCDC record, not given). No per-round density (or
 temperature, pressure, humidity) exists anywhere in the dissertation. Each appendix's Mach
-column gives one speed of sound per site (:func:`harp.speed_of_sound`), hence one air
-temperature (:func:`harp.air_temperature_k`): Yuma about 10 K colder. ``densities="site"`` keeps
+column gives one speed of sound per site (:func:`apogees.speed_of_sound`), hence one air
+temperature (:func:`apogees.air_temperature_k`): Yuma about 10 K colder. ``densities="site"`` keeps
 the text's two values; ``densities="temperature"`` keeps the anchor site's value and gives the
 other site the density of the same surface pressure at its own temperature (rho ~ 1/T). rho0 and
 Cd0 A enter the ECI MKS only as their product (eqs 5.8, 6.11), so a fitted Cd0 A absorbs the
@@ -54,7 +54,7 @@ from ...foundation.validation import (
     whole_number,
 )
 from ...models.sites import get_site
-from . import apogees as harp
+from . import apogees
 from .appendices import FOOT_M
 
 __all__ = [
@@ -96,7 +96,7 @@ RESAMPLES = 9999
 #: Bootstrap resamples at most: scipy holds them all at once (22 rounds x 8 bytes each).
 MAX_RESAMPLES = 10**5
 #: The muzzle-speed records' step: the recovered speeds are whole multiples of it (harp).
-SPEED_RECORD_STEP_M_S = harp.SPEED_STEP_FT_S * FOOT_M
+SPEED_RECORD_STEP_M_S = apogees.SPEED_STEP_FT_S * FOOT_M
 #: The appendices' masses are whole half pounds of 0.4536 kg (data/harp/README.md).
 MASS_RECORD_STEP_KG = 0.5 * 0.4536
 _FIT_STEP = 1e-4  # relative step of d apogee / d Cd0 A (the apogees carry ~1e-7 m of rounding)
@@ -160,14 +160,14 @@ def _bootstrap(samples, statistic, confidence, resamples, seed) -> Interval:
 # --- the distinct rounds and their predictions ---------------------------------------------------
 @cached_copies
 def _rounds(site: str) -> pd.DataFrame:
-    table = harp.appendix_rounds(site)
+    table = apogees.appendix_rounds(site)
     return table[~table.duplicate_of_earlier_row].reset_index(drop=True)
 
 
 def _apogees_m(
     site, drag_area_m2, model, surface_density_kg_m3=None, speed_m_s=None, mass_kg=None
 ) -> np.ndarray:
-    """Predicted apogees (m) of ``site``'s distinct rounds by the ECI MKS of :mod:`.harp`,
+    """Predicted apogees (m) of ``site``'s distinct rounds by the ECI MKS of :mod:`.apogees`,
     with any input replaced (arrays broadcast against the rounds: a (k, 1) ``drag_area_m2``
     gives k rows)."""
     launch_site, rounds = get_site(site), _rounds(site)
@@ -180,13 +180,15 @@ def _apogees_m(
         else surface_density_kg_m3,
     )
     speed, mass, area, density = (np.ravel(array) for array in arrays)
-    rounds = harp.round_corrections(site, speed, mass, area, model, surface_density_kg_m3=density)
+    rounds = apogees.round_corrections(
+        site, speed, mass, area, model, surface_density_kg_m3=density
+    )
     apogee = eci.solution_for(rounds, warn=False).apogee_altitude("eq_6_4")
     return np.reshape(apogee, arrays[0].shape)
 
 
 def _residuals_m(site: str, model: str) -> np.ndarray:
-    frame = harp.predicted_apogees(site, model)
+    frame = apogees.predicted_apogees(site, model)
     return frame.residual_m[~frame.duplicate_of_earlier_row].to_numpy()
 
 
@@ -457,7 +459,7 @@ def apogee_sensitivities(
             lambda change: {"surface_density_kg_m3": density * (1 + change)},
         ),
     }
-    area = harp.drag_area_m2(model)
+    area = apogees.drag_area_m2(model)
     nominal = _apogees_m(site, area, model)
     frame = pd.DataFrame({"round_number": rounds.round_number})
     for name, (step, unit, changed) in inputs.items():
@@ -559,7 +561,7 @@ def _flat(name: str, interval: Interval) -> dict[str, float]:
 
 # --- 3. Cd0 A fitted to the apogees --------------------------------------------------------------
 def surface_densities_kg_m3(densities: str = "site", anchor: str = "barbados") -> dict[str, float]:
-    """Each site's surface density (kg/m^3): the text's (``"site"``, those :mod:`.harp` flies),
+    """Each site's surface density (kg/m^3): the text's (``"site"``, those :mod:`.apogees` flies),
     or (``"temperature"``) ``anchor``'s with the other site's at the same surface pressure and
     its own Mach-column temperature, rho = rho_anchor T_anchor / T (module docstring)."""
     check_choice(densities, "densities", ("site", "temperature"))
@@ -567,7 +569,9 @@ def surface_densities_kg_m3(densities: str = "site", anchor: str = "barbados") -
     values = {site: get_site(site).surface_density_kg_m3 for site in SITES}
     if densities == "site":
         return values
-    temperature = {site: harp.air_temperature_k(harp.speed_of_sound(site)[0]) for site in SITES}
+    temperature = {
+        site: apogees.air_temperature_k(apogees.speed_of_sound(site)[0]) for site in SITES
+    }
     return {site: values[anchor] * temperature[anchor] / temperature[site] for site in SITES}
 
 
@@ -653,7 +657,7 @@ def fit_drag_area(
     model = eci.get_model(model).name
     rho = surface_densities_kg_m3(densities, anchor)
     samples = {site: np.arange(len(_rounds(site)))[None] for site in sites}
-    area = _fit_areas(samples, rho, model, per_site_offset, harp.drag_area_m2(model))
+    area = _fit_areas(samples, rho, model, per_site_offset, apogees.drag_area_m2(model))
     residual, slope = _linearised(samples, area, rho, model, per_site_offset)
     parameters = 1 + per_site_offset * len(sites)
     variance = float(np.sum(residual**2)) / (residual.size - parameters)
@@ -722,7 +726,7 @@ def drag_area_fit_table(
     """Cd0 A (m^2) fitted to each site alone, to both, and to both with a per-site offset: the
     estimate, its linearised standard uncertainty, its bootstrap interval, the residual sd, the
     fitted offsets (NaN where none is fitted) and its ratio to the Cd0 A ``model`` predicts
-    with (:func:`harp.drag_area_m2`; the dissertation's is the one Appendix E's errors fix)."""
+    with (:func:`apogees.drag_area_m2`; the dissertation's is the one Appendix E's errors fix)."""
     cases = {
         "barbados": (("barbados",), False),
         "yuma": (("yuma",), False),
@@ -748,7 +752,7 @@ def drag_area_fit_table(
             "high_m2": interval.high,
             "residual_std_m": fit.residual_std_m,
             **{f"offset_{site}_m": fit.site_offsets_m.get(site, math.nan) for site in SITES},
-            "ratio_to_model": fit.drag_area_m2 / harp.drag_area_m2(model),
+            "ratio_to_model": fit.drag_area_m2 / apogees.drag_area_m2(model),
         }
     return pd.DataFrame(rows).T
 

@@ -154,7 +154,7 @@ def identification_table(
     largest misfit to that column (km), whether it fits within the noise of an Error column
     printed to ``resolution_m`` (:func:`noise_threshold_km`), and with that Cd0 A Barbados'
     mean and sample standard deviation of the residual over the 23 printed rows (km, as
-    Ch. 6 C counts them) and round 181's splash range (km, :func:`harp_rounds.splash_range_km`).
+    Ch. 6 C counts them) and round 181's splash range (km, :func:`rounds.splash_range_km`).
     A copy."""
     table = _fits()
     threshold = noise_threshold_km(significance=significance, resolution_m=resolution_m)

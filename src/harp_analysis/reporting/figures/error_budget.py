@@ -1,5 +1,5 @@
 """The figures of notebook 08 (X.3-X.7): reporting on :mod:`.error_budget`,
-:mod:`.harp_confidence` and :mod:`.mks_improvement`. Each function draws from the tables the
+:mod:`.confidence` and :mod:`.mks_improvement`. Each function draws from the tables the
 analyses return and returns the figure; the notebook saves it."""
 
 from __future__ import annotations
