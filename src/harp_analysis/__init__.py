@@ -15,9 +15,13 @@ so ``import harp_analysis`` starts no compiler; everything else lives in its mod
 from __future__ import annotations
 
 import importlib
+from importlib import metadata as _metadata
 from typing import TYPE_CHECKING, Any
 
-__version__ = "0.1.0"
+try:  # the one source of the version is pyproject.toml, read from the installed metadata
+    __version__ = _metadata.version("harp-analysis")
+except _metadata.PackageNotFoundError:  # a checkout on sys.path that was never installed
+    __version__ = "0+unknown"
 
 #: Public name -> the module that defines it.
 _API = {
