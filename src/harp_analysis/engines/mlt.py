@@ -23,18 +23,23 @@ k = pi rho D^3 / 8 and (v_w, w_w) the wind resolved in N.
      r tan(theta) w, r tan(theta) v, tan(theta) r^2, tan(theta) q r, and the yaw-drag term
      CX2 (v^2 + w^2)/V^2) are dropped and u = V where u multiplies q or r (which also drops
      r u_w and q u_w, first order in the wind but a 1e-4 relative effect for 5 m/s).
+
 (L2) Axial velocity, drag with one factor V frozen: ``u' = -a (u - u_w) + D g_u / V``,
      a = -k CX0 / m. With V and the gravity component g_u frozen over a segment this is
      linear with constant coefficients: u(s) = u0 e^{-a s} + (a u_w + D g_u/V) s phi1(-a s),
      the total velocity's closed-form decay (phi_k are the functions below).
+
 (L3) Epicyclic states in complex form, v~ = v + i w, q~ = q + i r:
          v~' = -A v~ + i D q~ + (A v~_w + D (g_v + i g_w) / V),      A = k CNA / m,
          q~' = -i B v~ + (C + i E) q~ + i B v~_w,
+
      B = k CNA SLDEL / Iy (the static moment, SLDEL the centre-of-pressure arm),
      C = k D^2 CMQ / (2 Iy) (pitch damping), E = (Ix / Iy) p D / V (gyroscopic coupling).
      The 6DOF's v' = F_y/m + g_v - r u, w' = F_z/m + g_w + q u, q' = (M_y - Ix p r)/Iy,
      r' = (M_z + Ix p q)/Iy give exactly these after (L1).
+
 (L4) Roll: ``p' = kappa p + P_d``, kappa = k D^2 CLP / (2 Ix), P_d = k D V CLDD / Ix: closed form.
+
 (L5) Over a segment, X = [v~, q~] obeys X' = M X + F with a constant 2x2 complex matrix M and
      forcing F. Its eigenvalues lambda = m +- delta, m = (C - A + i E)/2,
      delta^2 = ((A + C + i E)/2)^2 + D B, are the fast and slow epicyclic modes (their
@@ -42,17 +47,22 @@ k = pi rho D^3 / 8 and (v_w, w_w) the wind resolved in N.
      Cayley-Hamilton every function of M is f(M) = (f(l1) + f(l2))/2 I + f[l1, l2] (M - m I),
      with the divided difference f[l1, l2] = (f(l1) - f(l2)) / (2 delta) (or f'(m) when the
      modes coincide), so
+
          X(s) = f0(M) X0 + f1(M) F,          integral_0^s X = f1(M) X0 + f2(M) F,
+
      f0(l) = e^{l s}, f_k(l) = s^k phi_k(l s), phi_k(z) = sum_n z^n / (n + k)!. No ODE solver:
      a segment is a handful of exponentials.
+
 (L6) Attitude, the pitch angle kept constant where it multiplies: theta(s) = theta0 +
      (D/V) Re integral q~, psi(s) = psi0 + (D/V) sec(theta) Im integral q~,
      phi(s) = phi0 + (D/V) integral p (r tan(theta) dropped, L1).
+
 (L7) Position and gravity, the pitch angle trapezoid-integrated inside the trigonometric
      functions: the rotation T(theta, psi) from the flat frame to N is replaced over a segment
      by the trapezoid mean T = (T(theta0, psi0) + T(theta1, psi1)) / 2, and
      [x y z](s) = [x y z]0 + (D/V) T^T integral_0^s [u v w] ds;
      the gravity and wind components in (L2)-(L3) are T g and T wind.
+
 (L8) The end angles theta1, psi1 come from a first pass of the segment with T at its start;
      the second pass uses the trapezoid T. Coefficients (density, Mach, CX0 ... CLDD, V, p,
      and the gravity vector) are frozen at ``coefficients_at``: the segment's ``"start"``,

@@ -3,20 +3,20 @@
 Each engine (3DOF, 6DOF, and the analytic solutions of later chapters) returns a pandas
 DataFrame with at least these columns, one row per output time, SI units:
 
-============================== ===============================================================
-``time_s``                     time since launch
-``x_m``, ``y_m``, ``z_m``      position in the engine's own frame (documented by the engine)
-``altitude_m``                 height above the spherical Earth, |r| - R
-``ground_range_m``             arc along the surface in the launch plane (the great circle
-                               through the launch point along the launch bearing)
-``cross_range_m``              arc along the surface out of the launch plane (right positive)
-``speed_m_s``                  speed in the non-rotating (inertial) frame
-``mach``                       air-relative speed over the local speed of sound
-``drag_coefficient``           Cd used for the drag force
-``drag_to_gravity``            N = drag force / gravitational force (Fig 2.2)
+=================================== ===============================================================
+``time_s``                          time since launch
+``x_m``, ``y_m``, ``z_m``           position in the engine's own frame (documented by the engine)
+``altitude_m``                      height above the spherical Earth, |r| - R
+``ground_range_m``                  arc along the surface in the launch plane (the great circle
+                                    through the launch point along the launch bearing)
+``cross_range_m``                   arc along the surface out of the launch plane (right positive)
+``speed_m_s``                       speed in the non-rotating (inertial) frame
+``mach``                            air-relative speed over the local speed of sound
+``drag_coefficient``                Cd used for the drag force
+``drag_to_gravity``                 N = drag force / gravitational force (Fig 2.2)
 ``specific_angular_momentum_m2_s``  |r x v| about the Earth's centre, inertial v (Fig 2.10)
-``flight_path_angle_rad``      angle of the inertial velocity above the local horizontal
-============================== ===============================================================
+``flight_path_angle_rad``           angle of the inertial velocity above the local horizontal
+=================================== ===============================================================
 
 and the same metadata in ``frame.attrs`` (:func:`describe`, :data:`METADATA_KEYS`): the engine,
 the launch, the apogee (time, altitude, ground range; NaN if not reached), the end of the flight
