@@ -46,6 +46,20 @@ def simulate_appendix_a(launch: Launch, dt_s: float, *, max_time_s: float = 3000
     angle from the launch point), ``cross_range_m`` (right of the launch plane), ``speed_m_s``
     (backward-difference speed), ``radius_m`` and ``specific_angular_momentum_m2_s`` as the
     macro computes them.
+
+    Parameters
+    ----------
+    launch : Launch
+        The launch (its wind is ignored, with a warning).
+    dt_s : float
+        The macro's fixed step (s).
+    max_time_s : float
+        The longest flight (s).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The rows the macro would write, with the shared metadata in ``frame.attrs``.
     """
     if not isinstance(launch, Launch):
         raise TypeError(f"launch must be a Launch; got {type(launch).__name__}")

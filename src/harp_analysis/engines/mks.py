@@ -964,7 +964,29 @@ def simulate_mks(
 
     Positions are Earth-centred (z north, x toward longitude 0) in the launch plane; Mach is
     the speed over the launch atmosphere's speed of sound; the drag coefficient is the MKS's
-    constant Cd0 and drag/gravity is its drag in eq 3.11's air, rho0 exp(-k a)."""
+    constant Cd0 and drag/gravity is its drag in eq 3.11's air, rho0 exp(-k a).
+
+    Parameters
+    ----------
+    launch : Launch
+        The launch (its wind and spin are left out, with a warning: the MKS has none).
+    n_terms : int
+        Terms of the series of eq 3.30 (the text's three-term MKS by default).
+    n_points : int
+        Equal steps of angular range from launch to impact.
+    decay_constant_per_m : float
+        k of eq 3.11's exponential air (1/m; the text's 0.117 /km by default).
+    warn : bool
+        Warn where the launch leaves the MKS's validity (beta above 0.25, escape, an apogee
+        in the sensible atmosphere).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The trajectory table of :mod:`harp_analysis.models.trajectory`, one row per output
+        time in SI units, with the shared metadata in ``frame.attrs`` (apogee, range, time of
+        flight, why the flight stopped, the work it took).
+    """
     count = whole_number(n_points, "n_points", low=2, high=MAX_ROWS)
     if not isinstance(launch, Launch):
         raise TypeError(f"launch must be a Launch; got {type(launch).__name__}")

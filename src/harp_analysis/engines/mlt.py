@@ -639,6 +639,33 @@ def simulate_mlt(
     the 6DOF's aerodynamics, so the two tables mean the same thing. ``frame.attrs`` holds the
     shared metadata (``steps`` = segments, ``rhs_evaluations`` = coefficient evaluations, the
     6DOF's right-hand side without its derivatives) and MLT's options.
+
+    Parameters
+    ----------
+    launch : Launch
+        The launch to fly, as by the 6DOF (HP or LP).
+    density_altitude : str
+        ``"flat"`` or ``"spherical"``, as the 6DOF's.
+    segment_length_m : float
+        Arc length (m) between updates of the linear solution.
+    coefficients_at : str
+        Where in a segment the coefficients are frozen: ``"start"``, ``"middle"`` or
+        ``"average"``.
+    gravity : str
+        ``"central"`` (the 6DOF's field, frozen per segment) or ``"uniform"``.
+    aerodynamics : bool
+        False flies in vacuum.
+    max_time_s : float
+        The longest flight (s).
+    output_step_s : float
+        Seconds between rows.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The trajectory table of :mod:`harp_analysis.models.trajectory`, one row per output
+        time in SI units, with the shared metadata in ``frame.attrs`` (apogee, range, time of
+        flight, why the flight stopped, the work it took).
     """
     check_choice(density_altitude, "density_altitude", DENSITY_ALTITUDES)
     model = rigid_body_launch(launch, "MLT", density_altitude)

@@ -399,6 +399,26 @@ def simulate_6dof(
     velocity over m GM / |r|^2) and :data:`harp_analysis.models.rigid_body.EXTRA_COLUMNS`;
     ``frame.attrs`` the shared metadata
     (:func:`harp_analysis.models.trajectory.describe`).
+
+    Parameters
+    ----------
+    launch : Launch
+        The launch to fly (its projectile needs Appendix B's aerodynamic tables: HP or LP).
+    density_altitude : str
+        ``"flat"`` (the air at the flat frame's altitude, as Appendix B) or ``"spherical"``.
+    rtol : float
+        DOP853's relative tolerance.
+    max_time_s : float
+        The longest flight (s); one cut off here warns (TruncatedFlightWarning).
+    output_step_s : float
+        Seconds between rows.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The trajectory table of :mod:`harp_analysis.models.trajectory`, one row per output
+        time in SI units, with the shared metadata in ``frame.attrs`` (apogee, range, time of
+        flight, why the flight stopped, the work it took).
     """
     model = rigid_body_launch(launch, "6DOF", density_altitude)
     projectile = launch.projectile

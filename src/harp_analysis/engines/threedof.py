@@ -579,7 +579,28 @@ def fly_3dof(
     A flight ends where it falls back to the site's altitude, or to ``end_altitude_m`` (m) if
     given, or rises through it if ``rising`` (a target above the gun on the way up); each is
     one for every launch or an array (n,), one per launch. ``impact`` says whether it got
-    there before ``max_time_s``."""
+    there before ``max_time_s``.
+
+    Parameters
+    ----------
+    launches : Launch, Launches or list of Launch
+        The launches, flown together by one compiled call.
+    rtol : float
+        The integrator's relative tolerance.
+    max_time_s : float
+        The longest flight (s).
+    end_altitude_m : float or numpy.ndarray, optional
+        Where a flight ends (m), for every launch or one each (n,); the site's altitude by
+        default.
+    rising : bool or numpy.ndarray
+        For every launch or one each (n,): end where the flight rises through
+        ``end_altitude_m``, not where it falls back.
+
+    Returns
+    -------
+    Flights
+        Apogee and end of every launch as arrays (n,), SI units.
+    """
     rtol, max_time_s = _numerics(rtol, max_time_s)
     batch = _batch(launches)
     count = batch.columns.shape[1]
@@ -664,7 +685,27 @@ def simulate_3dof(
     ``rtol`` is the integrator's relative tolerance; rows come every ``output_step_s`` plus
     the impact, or the last time reached if ``max_time_s`` comes first (a
     TruncatedFlightWarning). The state is inertial; with ``launch.rotation_rate_rad_s`` the air
-    turns with the Earth and ranges are measured on the turning Earth."""
+    turns with the Earth and ranges are measured on the turning Earth.
+
+    Parameters
+    ----------
+    launch : Launch
+        The launch to fly: projectile, muzzle speed, elevation, bearing, site, air, wind and
+        the Earth's rotation.
+    rtol : float
+        The integrator's relative tolerance.
+    max_time_s : float
+        The longest flight (s); one cut off here warns (TruncatedFlightWarning).
+    output_step_s : float
+        Seconds between rows.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The trajectory table of :mod:`harp_analysis.models.trajectory`, one row per output
+        time in SI units, with the shared metadata in ``frame.attrs`` (apogee, range, time of
+        flight, why the flight stopped, the work it took).
+    """
     if not isinstance(launch, Launch):
         raise TypeError(
             f"launch must be a Launch (harp_analysis.models.launch.Launch); "

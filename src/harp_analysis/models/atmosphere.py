@@ -366,7 +366,18 @@ ATMOSPHERE_NAMES = tuple(_MODELS)
 
 
 def get_atmosphere(name: str) -> AtmosphereModel:
-    """The atmosphere model called ``name`` (one of :data:`ATMOSPHERE_NAMES`)."""
+    """The atmosphere model called ``name`` (one of :data:`ATMOSPHERE_NAMES`).
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`ATMOSPHERE_NAMES` (``"us1976"``, ``"two_segment"``, ...).
+
+    Returns
+    -------
+    AtmosphereModel
+        The model: its density and speed of sound against altitude, compiled.
+    """
     return _MODELS[check_choice(name, "atmosphere", _MODELS)]
 
 

@@ -469,7 +469,20 @@ class Launches(_LaunchAir):
 def chapter_2(projectile: Projectile, **changes) -> Launch:
     """Chapter 2 A's reference launch of ``projectile`` (Appendix B's case): its muzzle speed
     (2022 m/s for HP and LP) at 50 deg through eqs 2.1-2.2, a 5 m/s cross wind, 10 rad/s of
-    spin, a non-rotating Earth."""
+    spin, a non-rotating Earth.
+
+    Parameters
+    ----------
+    projectile : Projectile
+        HP or LP (or any projectile, at its own muzzle speed).
+    **changes
+        Fields of :class:`Launch` to change (as :meth:`Launch.but`).
+
+    Returns
+    -------
+    Launch
+        The launch, validated.
+    """
     return Launch(
         projectile,
         speed_m_s=projectile.launch_speed_m_s,
@@ -486,5 +499,18 @@ LP_CHAPTER_2 = chapter_2(LP)
 
 def baseline_chapter_4(elevation_deg: float, **changes) -> Launch:
     """Chapter 4 B's baseline cone at ``elevation_deg``: 2157 m/s, no wind, no spin, a
-    non-rotating Earth, eqs 2.1-2.2 (Chapter 5 adds the rotation and the site)."""
+    non-rotating Earth, eqs 2.1-2.2 (Chapter 5 adds the rotation and the site).
+
+    Parameters
+    ----------
+    elevation_deg : float
+        The gun's elevation (deg).
+    **changes
+        Fields of :class:`Launch` to change (as :meth:`Launch.but`).
+
+    Returns
+    -------
+    Launch
+        The launch, validated.
+    """
     return Launch(BASELINE, BASELINE.launch_speed_m_s, elevation_deg).but(**changes)

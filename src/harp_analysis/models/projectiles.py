@@ -136,7 +136,18 @@ PROJECTILE_NAMES = tuple(_PROJECTILES)
 
 
 def get_projectile(name: str) -> Projectile:
-    """The projectile called ``name`` (one of :data:`PROJECTILE_NAMES`)."""
+    """The projectile called ``name`` (one of :data:`PROJECTILE_NAMES`).
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`PROJECTILE_NAMES` (``"HP"``, ``"LP"``, ``"baseline"``, ...).
+
+    Returns
+    -------
+    Projectile
+        Its mass properties, reference area, drag law and nominal launch speed.
+    """
     return _PROJECTILES[check_choice(name, "projectile", _PROJECTILES)]
 
 

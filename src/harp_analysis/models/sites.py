@@ -61,6 +61,17 @@ _SITES = {site.name.lower(): site for site in (BARBADOS, YUMA)}
 
 
 def get_site(site: str) -> LaunchSite:
-    """Return the site called ``site`` ("barbados" or "yuma", any case); else ``ValueError``."""
+    """Return the site called ``site`` ("barbados" or "yuma", any case); else ``ValueError``.
+
+    Parameters
+    ----------
+    site : str
+        ``"barbados"`` or ``"yuma"``, any case.
+
+    Returns
+    -------
+    LaunchSite
+        The gun site: its latitude, elevation, gun bearing and surface air density.
+    """
     key = site.lower() if isinstance(site, str) else site
     return _SITES[check_choice(key, "site", _SITES)]

@@ -440,7 +440,27 @@ def firing_solutions(gun, targets, *, bearing_limits_deg=None, branch="descendin
     solver of :mod:`.solver`, the same answers either way), meeting each on the
     trajectory's ``branch`` ("descending" or "ascending"). The bearing is limited to the arc
     turning clockwise from bearing_limits_deg[0] to [1] if given. A target out of reach is a
-    result with no roots and the reason, not an exception."""
+    result with no roots and the reason, not an exception.
+
+    Parameters
+    ----------
+    gun : Launch
+        The gun: projectile, muzzle speed, site and the Earth's rotation (its elevation and
+        bearing are what is solved).
+    targets : TargetPoint or list of TargetPoint
+        The points to reach.
+    bearing_limits_deg : (float, float), optional
+        The arc of bearings (deg from true north, clockwise from the first to the second)
+        the gun may take.
+    branch : str
+        ``"descending"`` or ``"ascending"``: where the trajectory meets the target.
+
+    Returns
+    -------
+    FiringSolutions or list of FiringSolutions
+        The low-angle and high-angle roots of each target (None where there is none, with
+        the reason), one result per target if ``targets`` is a sequence.
+    """
     gun = check_gun(gun)
     points, single = check_targets(targets)
     branch = check_choice(branch, "branch", BRANCHES)
@@ -465,7 +485,24 @@ def destination(
     gun: Launch, bearing_deg: float, downrange_m: float, altitude_m: float = 0.0
 ) -> TargetPoint:
     """The point ``downrange_m`` along the surface from ``gun`` (its latitude and longitude)
-    on the great circle leaving it at ``bearing_deg`` from true north, ``altitude_m`` up."""
+    on the great circle leaving it at ``bearing_deg`` from true north, ``altitude_m`` up.
+
+    Parameters
+    ----------
+    gun : Launch
+        The gun whose latitude and longitude the point is measured from.
+    bearing_deg : float
+        The bearing leaving the gun (deg from true north).
+    downrange_m : float
+        The distance along the surface (m), at most half the Earth's circumference.
+    altitude_m : float
+        The point's altitude above the spherical Earth (m).
+
+    Returns
+    -------
+    TargetPoint
+        The point, fixed to the Earth.
+    """
     bearing = math.radians(real_number(bearing_deg, "bearing_deg"))
     distance = check_range(real_number(downrange_m, "downrange_m"), "downrange_m", low=0.0)
     if distance > math.pi * earth.RADIUS_M:
