@@ -8,7 +8,7 @@ STAMP := $(VENV)/.installed
 
 KERNELS := $(VENV)/.kernels
 
-.PHONY: figures test lint benchmark explore check-browser clean-venv
+.PHONY: figures test lint benchmark explore check-browser docs check-docs clean-venv
 
 $(STAMP): environment.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -57,6 +57,28 @@ explore: $(KERNELS)
 # a missing chromium or chromium-driver fails them, never skips.
 check-browser: $(KERNELS)
 	HARP_ANALYSIS_REQUIRE_BROWSER=1 HARP_ANALYSIS_EXPLORER_LOAD=1 $(BIN)/python -m pytest -q tests/browser
+
+# The documentation site, offline, into build/docs/html (docs/, harp_analysis.reporting.site):
+# its pages assembled in build/docs/source (the notebooks run once, the ledger evaluated once,
+# the benchmarks run once, each cached in build/docs/cache until the sources change), built by
+# Sphinx with every warning an error (broken cross-references included; -E reads every page
+# again, so a second build reports what the first did), then every internal
+# link, anchor and image of the built pages checked, and nothing loaded from outside.
+# HARP_ANALYSIS_DOCS_EXECUTE=0 leaves the notebooks unrun; HARP_ANALYSIS_DOCS_BENCHMARKS=smoke
+# or off runs the benchmarks in their smoke mode or not at all (for iterating on the pages).
+DOCS := build/docs
+docs: $(KERNELS)
+	$(BIN)/python -m harp_analysis.reporting.site sources $(DOCS)/source
+	$(BIN)/sphinx-build -E -W --keep-going -n -q -b html -c docs -d $(DOCS)/doctrees \
+		$(DOCS)/source $(DOCS)/html
+	$(BIN)/python -m harp_analysis.reporting.site check $(DOCS)/html
+	@echo "The site: $(CURDIR)/$(DOCS)/html/index.html"
+
+# The built site in Debian's headless Chromium (tests/browser/test_docs_site.py); a missing
+# chromium or chromium-driver fails it, never skips.
+check-docs: docs
+	HARP_ANALYSIS_REQUIRE_BROWSER=1 HARP_ANALYSIS_DOCS_SITE="$(CURDIR)/$(DOCS)/html" \
+		$(BIN)/python -m pytest -q -p no:cacheprovider tests/browser/test_docs_site.py
 
 benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_atmosphere.py

@@ -1,0 +1,308 @@
+"""Sphinx configuration of the harp-analysis site (``make docs``; issue 28).
+
+The source tree Sphinx reads is assembled by ``python -m harp_analysis.reporting.site sources``
+in ``build/docs/source`` (this folder's pages, the generated ones and the notebooks, run once
+and cached); this folder holds the configuration, the templates and the static files, read
+from here (``sphinx-build -c docs``). The notebooks arrive with their outputs or without, so
+myst-nb never runs them (``nb_execution_mode = "off"``).
+
+Every warning fails the build (``-W``), broken cross-references included (``-n``, nitpicky):
+the package's docstrings cite each other with Sphinx roles, fully qualified
+(:func:`harp_analysis.engines.mks.for_launch`) or by a dotted suffix (:func:`.atmosphere.day_air`,
+:mod:`.eci`), which the Python domain resolves by searching for the suffix. Third-party types in
+signatures (numpy, pandas, ...) cannot resolve offline, with no inventory to fetch: they are
+ignored by name below, and nothing of the package's own is.
+"""
+
+from __future__ import annotations
+
+import datetime
+import importlib
+import inspect
+import re
+import typing
+from pathlib import Path
+
+import harp_analysis
+
+project = "harp-analysis"
+author = "the harp-analysis developers"
+copyright = f"{datetime.date.today().year}, {author}"
+version = release = harp_analysis.__version__
+
+extensions = [
+    "myst_nb",  # the notebooks and the Markdown pages (it brings myst_parser)
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.mathjax",
+    "sphinx-mathjax-offline",  # MathJax 3 copied into _static/mathjax: no CDN
+]
+
+# absolute: autosummary looks for its templates from the source tree, which is elsewhere
+templates_path = [str(Path(__file__).resolve().parent / "_templates")]
+html_static_path = ["_static"]
+exclude_patterns = ["_build", "**.ipynb_checkpoints", "_generated", "_root"]
+source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
+root_doc = "index"
+
+# --- the notebooks: already run (or deliberately not) by harp_analysis.reporting.site -----------
+nb_execution_mode = "off"
+nb_merge_streams = True
+myst_enable_extensions = ["dollarmath", "colon_fence", "deflist", "attrs_inline", "substitution"]
+myst_substitutions = {"version": version}
+myst_heading_anchors = 3
+myst_dmath_double_inline = True
+
+# MathJax from the site itself (sphinx-mathjax-offline copies it into _static/mathjax)
+mathjax_path = "mathjax/tex-chtml.js"
+
+# --- the API reference, generated from the package tree (autosummary, recursive) -------------
+autosummary_generate = True
+# Every public member a module defines, whether its __all__ lists it or not (docstrings cite
+# constants that __all__ leaves out), and none it imports. autodoc documents a constant only
+# by its "#:" comment; the module template lists the others (_undocumented_constants).
+autosummary_ignore_module_all = True
+autodoc_default_options = {
+    "members": True,
+    "undoc-members": True,
+    "ignore-module-all": True,
+    # what a class inherits from the package's own (private) bases, not from Python's
+    "inherited-members": "object,tuple,dict,list,Exception,BaseException,Warning,UserWarning,"
+    "RuntimeWarning,ValueError,Enum,IntEnum,float,int,str",
+}
+
+
+def _undocumented_constants() -> dict[str, list[str]]:
+    """Per module of the package, the public constants it assigns (not imports) without a
+    "#:" comment, in source order: the module template documents them by name and value."""
+    import ast
+    import pkgutil
+
+    from sphinx.pycode import ModuleAnalyzer
+
+    found = {}
+    for info in pkgutil.walk_packages(harp_analysis.__path__, "harp_analysis."):
+        module = importlib.import_module(info.name)
+        documented = {name for _, name in ModuleAnalyzer.for_module(info.name).find_attr_docs()}
+        names = []
+        for statement in ast.parse(inspect.getsource(module)).body:
+            targets = (
+                statement.targets if isinstance(statement, ast.Assign)
+                else [statement.target] if isinstance(statement, ast.AnnAssign) else []
+            )  # fmt: skip
+            for node in (n for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)):
+                value = getattr(module, node.id, None)
+                if not (
+                    node.id.startswith("_")
+                    or node.id in documented
+                    or node.id in names
+                    or callable(value)
+                    or inspect.ismodule(value)
+                    or isinstance(value, typing.TypeVar | typing.ParamSpec)
+                ):
+                    names.append(node.id)
+        found[info.name] = names
+    return found
+
+
+autosummary_context = {"undocumented_constants": _undocumented_constants()}
+autodoc_member_order = "bysource"
+autodoc_typehints = "signature"
+autodoc_preserve_defaults = True
+python_use_unqualified_type_names = True
+add_module_names = False
+
+# --- every warning is an error; cross-references are checked ---------------------------------
+nitpicky = True
+_THIRD_PARTY = (
+    "np", "numpy", "npt", "numpy.typing", "pd", "pandas", "scipy", "numba", "matplotlib",
+    "mpl", "plt", "Figure", "Axes", "distributed", "dask", "ipywidgets", "widgets", "tomllib",
+    "collections", "collections.abc", "typing", "typing_extensions", "concurrent", "pathlib",
+    "enum", "dataclasses", "functools", "os", "re", "types", "numbers", "datetime", "warnings",
+    "contextlib", "SALib", "tqdm", "filelock", "nbformat", "nbclient", "subprocess",
+    "importlib",
+)  # fmt: skip
+_BUILTINS = (
+    "int", "float", "complex", "bool", "str", "bytes", "object", "None", "type", "list",
+    "tuple", "dict", "set", "frozenset", "Callable", "Iterable", "Iterator", "Sequence",
+    "Mapping", "Generator", "Any", "Path", "ArrayLike", "NDArray", "DataFrame", "Series",
+    "ndarray", "Exception", "ValueError", "TypeError", "RuntimeError", "UserWarning",
+    "Warning", "NamedTuple", "Enum", "P", "R", "T", "Literal", "Self", "ParamSpec",
+    "TypeVar", "Client", "Future", "Lock", "ModuleType",
+    "optional",  # numpy-style "float, optional"
+)  # fmt: skip
+nitpick_ignore_regex = [
+    (
+        r"py:(class|obj|data|func|meth|attr|exc|mod)",
+        rf"({'|'.join(map(re.escape, _THIRD_PARTY))})\..*",
+    ),
+    (r"py:(class|obj|data|exc)", rf"({'|'.join(map(re.escape, _BUILTINS))})"),
+    # a dataclass whose annotations autodoc prints as the strings they are ('tuple[str, ...]')
+    (r"py:class", r"'.*"),
+]
+
+# --- the page ------------------------------------------------------------------------------
+html_theme = "pydata_sphinx_theme"
+html_title = f"harp-analysis {version}"
+html_css_files = ["site.css"]
+html_js_files = ["ledger.js"]
+html_last_updated_fmt = None
+html_show_sourcelink = False
+html_copy_source = False
+html_theme_options = {
+    # nothing fetched from outside: no icon links, no analytics, no version switcher
+    "icon_links": [],
+    "navbar_end": ["theme-switcher", "navbar-icon-links"],
+    "show_version_warning_banner": False,
+    "navigation_with_keys": False,
+    "footer_start": ["copyright"],
+    "footer_end": ["last-updated"],
+    "secondary_sidebar_items": ["page-toc"],
+    "header_links_before_dropdown": 8,
+}
+html_context = {"default_mode": "light"}
+html_sidebars = {"ledger": [], "index": []}  # the ledger's wide table gets the page's width
+
+
+# --- numpy-style sections, and references by a dotted suffix ---------------------------------
+
+
+_LITERAL = re.compile(r"(``.*?``|:[a-z:]+:`[^`]*`)")
+
+
+def _plain_bars(app, what, name, obj, options, lines):
+    """The docstrings write |x| for a magnitude (|r| - R, |Vrel|), never a reST substitution:
+    every bar outside a literal or a role is escaped."""
+    for i, line in enumerate(lines):
+        if "|" in line:
+            parts = _LITERAL.split(line)
+            lines[i] = "".join(
+                part if n % 2 else part.replace("|", "\\|") for n, part in enumerate(parts)
+            )
+
+
+def _skip_third_party(app, what, name, obj, skip, options):
+    """A function or class a module imports from another package (scipy's ``bootstrap``) is
+    never documented there; skipped before autodoc formats its signature."""
+    defined_in = getattr(obj, "__module__", None)
+    if what == "module" and isinstance(defined_in, str) and (callable(obj) or inspect.isclass(obj)):
+        if not defined_in.startswith("harp_analysis"):
+            return True
+    return None
+
+
+def _no_type_docstring(app, what, name, obj, options, lines):
+    """A constant without a "#:" comment has no docstring of its own: never show its type's
+    (a dict's "dict() -> new empty dictionary")."""
+    if what in ("data", "attribute") and lines:
+        own = type(obj).__doc__
+        if isinstance(own, str) and "\n".join(lines).strip() == inspect.cleandoc(own).strip():
+            lines[:] = []
+
+
+def _numpy_sections(app, what, name, obj, options, lines):
+    """Napoleon's numpy-style sections (Parameters, Returns, ...) in the docstrings of functions,
+    methods and classes only: on a module attribute Napoleon would read the text before a colon
+    of a ``#:`` comment ("The explorer's notebook: a Voila app") as the attribute's type."""
+    if what in ("function", "method", "class", "exception"):
+        from sphinx.ext.napoleon import Config
+        from sphinx.ext.napoleon.docstring import NumpyDocstring
+
+        config = Config(napoleon_google_docstring=False, napoleon_use_rtype=False)
+        lines[:] = NumpyDocstring(lines, config, app, what, name, obj, options).lines()
+
+
+def _instance_attribute(node, target: str) -> bool:
+    """Whether ``target`` is an attribute that the class of the reference sets on its instances
+    (``self.escapes = ...``): it exists, but autodoc documents such an attribute only by a "#:"
+    comment, so it is shown without a link."""
+    module, owner = node.get("py:module"), node.get("py:class")
+    if not (module and owner):
+        return False
+    try:
+        cls = importlib.import_module(module)
+        for part in owner.split("."):
+            cls = getattr(cls, part)
+        source = inspect.getsource(cls)
+    except (ImportError, AttributeError, OSError, TypeError):
+        return False
+    return re.search(rf"\bself\.{re.escape(target)}\s*(:[^=]*)?=", source) is not None
+
+
+def _in_namespace(node, target: str) -> str | None:
+    """The full name of ``target`` as the module of the reference sees it: a name it imports
+    (``case`` in a module that did ``from ..comparisons import case``) or an attribute of a
+    module it imports (``apogees.speed_of_sound``), followed to where it is defined."""
+    module_name = node.get("py:module")
+    if not module_name:
+        return None
+    try:
+        value = importlib.import_module(module_name)
+    except ImportError:
+        return None
+    home, rest = module_name, []
+    for part in target.split("."):
+        if not hasattr(value, part):
+            return None
+        value = getattr(value, part)
+        if inspect.ismodule(value):
+            home, rest = value.__name__, []
+        else:
+            rest.append(part)
+    if inspect.ismodule(value):
+        return value.__name__
+    defined_in = getattr(value, "__module__", None)
+    qualified = getattr(value, "__qualname__", None)
+    if isinstance(defined_in, str) and isinstance(qualified, str) and len(rest) == 1:
+        return f"{defined_in}.{qualified}"
+    return ".".join([home, *rest])
+
+
+def _by_suffix(app, env, node, contnode):
+    """Resolve a Python reference no exact lookup found by the package object whose full name
+    ends with it (``Launch`` in a signature, ``mks.ModifiedKeplerSolution``): only when exactly
+    one object of the package matches, so an ambiguous name is still a warning."""
+    if node.get("refdomain") != "py":
+        return None
+    from sphinx.util.nodes import make_refnode
+
+    target = node["reftarget"].lstrip(".~")
+    domain = env.domains["py"]
+    seen = _in_namespace(node, target)
+    if seen in domain.objects:
+        entry = domain.objects[seen]
+        return make_refnode(
+            app.builder, node["refdoc"], entry.docname, entry.node_id, contnode, seen
+        )
+    if target.rpartition(".")[2].startswith("_"):
+        return contnode  # a private name, shown but never documented, so never linked
+    if node.get("reftype") == "attr" and _instance_attribute(node, target):
+        return contnode
+    if target.rpartition(".")[0].startswith("harp_analysis."):  # a type variable's name
+        module, _, attribute = target.rpartition(".")
+        try:
+            value = getattr(importlib.import_module(module), attribute, None)
+        except ImportError:
+            value = None
+        if isinstance(value, typing.TypeVar | typing.ParamSpec):
+            return contnode
+    matches = [
+        name
+        # the package's objects only: a numpy or pandas name never resolves to one of them
+        for name in domain.objects
+        if name.startswith("harp_analysis") and (name == target or name.endswith("." + target))
+    ]
+    if len(matches) != 1:
+        return None
+    entry = domain.objects[matches[0]]
+    return make_refnode(
+        app.builder, node["refdoc"], entry.docname, entry.node_id, contnode, matches[0]
+    )
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", _no_type_docstring, priority=300)
+    app.connect("autodoc-process-docstring", _plain_bars, priority=400)
+    app.connect("autodoc-process-docstring", _numpy_sections)
+    app.connect("autodoc-skip-member", _skip_third_party)
+    app.connect("missing-reference", _by_suffix)
