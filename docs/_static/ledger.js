@@ -127,6 +127,7 @@
       row.scrollIntoView({ block: "center" });
     }
     window.addEventListener("hashchange", showTarget);
+    window.addEventListener("load", showTarget);  // again once the browser has scrolled to it
     apply();
     showTarget();
   }

@@ -2,7 +2,9 @@
 of `make explore` (serve/voila.py), and open it in Debian's headless Chromium.
 
 The load test (marked ``load``) is left out unless HARP_ANALYSIS_EXPLORER_LOAD=1, as
-`make check-browser` sets: it takes about a minute, beyond `make test`'s budget."""
+`make check-browser` sets: it takes about a minute, beyond `make test`'s budget. The
+documentation site's test (marked ``docs``) is left out unless HARP_ANALYSIS_DOCS_SITE names a
+built site, as `make check-docs` sets after building it."""
 
 import os
 import socket
@@ -36,15 +38,20 @@ def pytest_configure(config):
     config.addinivalue_line(
         "markers", "load: the served explorer under load (HARP_ANALYSIS_EXPLORER_LOAD=1 only)"
     )
+    config.addinivalue_line(
+        "markers", "docs: the built documentation site (HARP_ANALYSIS_DOCS_SITE set only)"
+    )
 
 
 def pytest_collection_modifyitems(config, items):
-    if os.environ.get("HARP_ANALYSIS_EXPLORER_LOAD") == "1":
-        return
-    load = [item for item in items if item.get_closest_marker("load")]
-    if load:
-        config.hook.pytest_deselected(items=load)
-        items[:] = [item for item in items if item not in load]
+    left_out = []
+    if os.environ.get("HARP_ANALYSIS_EXPLORER_LOAD") != "1":
+        left_out += [item for item in items if item.get_closest_marker("load")]
+    if not os.environ.get("HARP_ANALYSIS_DOCS_SITE"):
+        left_out += [item for item in items if item.get_closest_marker("docs")]
+    if left_out:
+        config.hook.pytest_deselected(items=left_out)
+        items[:] = [item for item in items if item not in left_out]
 
 
 def require_browser() -> None:

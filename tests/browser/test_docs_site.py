@@ -1,0 +1,250 @@
+"""The documentation site in a browser (issue 28): the built site (`make docs`) is served on a
+free loopback port and Debian's headless Chromium opens it through selenium, as a reader would.
+From the landing page it follows the gallery to a dissertation figure's page, from there a
+ledger row about the figure, and from the row the API entry of the function that computes it,
+whose docstring cites the dissertation's equation; it checks that the figure and the other
+images render, that the ledger filters and sorts, that the search finds a function, that the
+site reports the package's version and that MathJax, served by the site itself, typesets.
+A screenshot of each step goes to $HARP_ANALYSIS_SCREENSHOT_DIR, else to the test's temporary
+folder.
+
+Runs only where HARP_ANALYSIS_DOCS_SITE names the built site (`make check-docs` sets it after
+building); skipped without chromium and chromium-driver unless HARP_ANALYSIS_REQUIRE_BROWSER=1,
+which makes that a failure."""
+
+import functools
+import http.server
+import inspect
+import os
+import re
+import threading
+from pathlib import Path
+from urllib.parse import unquote, urlsplit
+
+import pytest
+from selenium.webdriver.common.by import By
+from selenium.webdriver.support.ui import Select, WebDriverWait
+
+import harp_analysis
+from harp_analysis.reporting import ledger, registry
+
+pytestmark = [pytest.mark.browser, pytest.mark.docs]
+
+WAIT_S = 30.0  # a bound on waiting for a page, never an asserted time
+#: "eq 3.30", "eqs 4.4-4.7", "(eq 6.4)": how the docstrings cite the dissertation's equations
+EQUATION = re.compile(r"\beqs?\.? ?\d+\.\d+")
+
+
+@pytest.fixture(scope="module")
+def built_site() -> Path:
+    folder = os.environ.get("HARP_ANALYSIS_DOCS_SITE")
+    if not folder:
+        pytest.skip("no built site: HARP_ANALYSIS_DOCS_SITE is unset (make check-docs sets it)")
+    site = Path(folder)
+    assert (site / "index.html").is_file(), f"{site} holds no built site: run make docs"
+    return site
+
+
+@pytest.fixture(scope="module")
+def served(built_site):
+    """The built site over HTTP on a free loopback port, as a static host would serve it."""
+
+    class Quiet(http.server.SimpleHTTPRequestHandler):
+        def log_message(self, *args):
+            pass
+
+    handler = functools.partial(Quiet, directory=str(built_site))
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    try:
+        yield f"http://127.0.0.1:{server.server_address[1]}/"
+    finally:
+        server.shutdown()
+        server.server_close()
+
+
+@pytest.fixture()
+def shoot(tmp_path):
+    folder = Path(os.environ.get("HARP_ANALYSIS_SCREENSHOT_DIR") or tmp_path)
+    folder.mkdir(parents=True, exist_ok=True)
+
+    def take(driver, name: str) -> None:
+        path = folder / f"docs-{name}.png"
+        assert driver.save_screenshot(str(path))
+        print(f"docs screenshot: {path}")
+
+    return take
+
+
+def wait(driver, condition, message: str):
+    return WebDriverWait(driver, WAIT_S, poll_frequency=0.2).until(condition, message=message)
+
+
+def click(driver, element) -> None:
+    """Click ``element`` as a reader would, once it is scrolled clear of the sticky header."""
+    driver.execute_script(
+        "arguments[0].scrollIntoView({block: 'center', inline: 'center'});", element
+    )
+    element.click()
+
+
+def images_rendered(driver) -> list[str]:
+    """The sources of the page's images that did not render (none loaded, or empty)."""
+    return driver.execute_script(
+        "return [...document.querySelectorAll('article img, main img')]"
+        ".filter(img => !(img.complete && img.naturalWidth > 0)).map(img => img.src);"
+    )
+
+
+def the_figure_and_its_row():
+    """A drawn figure of the dissertation and a ledger row about it whose function's docstring
+    cites an equation: the reader's path the test follows, chosen from the registry and the
+    ledger themselves."""
+    claims = ledger.load_claims()
+    for entry in registry.load_registry():
+        if entry.extension or entry.status not in registry.DRAWN or not entry.file.endswith("png"):
+            continue
+        for claim in claims:
+            if entry.number not in claim.figures:
+                continue
+            module, _, function = claim.compute.partition(":")
+            doc = inspect.getdoc(getattr(__import__(module, fromlist=[function]), function)) or ""
+            if EQUATION.search(doc):
+                return entry, claim
+    pytest.fail("no drawn figure has a ledger row whose function cites an equation")
+
+
+def test_a_reader_goes_from_a_figure_to_its_rows_the_function_and_its_equation(
+    browser_installed, browser, served, shoot
+):
+    entry, claim = the_figure_and_its_row()
+    module, _, function = claim.compute.partition(":")
+
+    browser.get(served)
+    wait(browser, lambda d: d.find_elements(By.CSS_SELECTOR, ".navbar-brand"), "no landing page")
+    brand = browser.find_element(By.CSS_SELECTOR, ".navbar-brand").text
+    assert harp_analysis.__version__ in brand, brand  # the site's version is the package's
+    assert images_rendered(browser) == []
+
+    # the gallery, then the figure's page
+    click(browser, browser.find_element(By.XPATH, "//nav//a[normalize-space()='Gallery']"))
+    wait(browser, lambda d: "gallery" in d.current_url, "the Gallery link led nowhere")
+    click(
+        browser, browser.find_element(By.XPATH, f"//article//a[normalize-space()='{entry.label}']")
+    )
+    wait(browser, lambda d: d.find_elements(By.CSS_SELECTOR, ".figure-pair"), "no figure page")
+    page = browser.find_element(By.TAG_NAME, "article").text
+    assert " ".join(entry.title.split()) in " ".join(page.split())  # the text's caption
+    wait(browser, lambda d: not images_rendered(d), "the figure did not render")
+    figure = browser.find_element(By.CSS_SELECTOR, ".project-side img")
+    assert entry.file in figure.get_attribute("src")
+    assert f"make figures FIG={entry.number}" in page
+    shoot(browser, "figure")
+
+    # the row about it: its verdict on the figure page, then its line of the ledger
+    row_link = browser.find_element(By.XPATH, f"//table//a[normalize-space()='{claim.id}']")
+    figure_row = row_link.find_element(By.XPATH, "./ancestor::tr")
+    assert claim.verdict in figure_row.text
+    click(browser, row_link)
+    wait(browser, lambda d: d.find_elements(By.CSS_SELECTOR, "tr.ledger-target"), "no row shown")
+    target = browser.find_element(By.CSS_SELECTOR, "tr.ledger-target")
+    assert claim.id in target.text and claim.verdict in target.text
+    assert target.is_displayed()
+    shoot(browser, "ledger-row")
+
+    # the function that computes it, and the equation its docstring cites
+    click(browser, target.find_element(By.XPATH, f".//a[normalize-space()='{function}']"))
+    anchor = f"{module}.{function}"
+    wait(browser, lambda d: unquote(urlsplit(d.current_url).fragment) == anchor, "no API entry")
+    entry_text = browser.execute_script(
+        "const dt = document.getElementById(arguments[0]); "
+        "return dt ? dt.parentElement.innerText : null;",
+        anchor,
+    )
+    assert entry_text and function in entry_text, anchor
+    assert EQUATION.search(entry_text), f"{anchor}'s entry cites no equation:\n{entry_text}"
+    shoot(browser, "api-entry")
+
+
+def test_the_public_entry_points_show_parameters_and_returns(browser_installed, browser, served):
+    browser.get(served + "api/harp_analysis.engines.threedof.html")
+    text = browser.execute_script(
+        "return document.getElementById('harp_analysis.engines.threedof.simulate_3dof')"
+        ".parentElement.innerText;"
+    )
+    assert "Parameters" in text and "Returns" in text and "launch" in text
+
+
+def test_the_ledger_filters_by_chapter_and_verdict_and_sorts(browser_installed, browser, served):
+    claims = ledger.load_claims()
+    browser.get(served + "ledger.html")
+    count = wait(browser, lambda d: d.find_element(By.ID, "ledger-count"), "no ledger controls")
+    assert count.text == f"{len(claims)} of {len(claims)} rows"
+
+    Select(browser.find_element(By.ID, "ledger-filter-verdict")).select_by_value("close")
+    expected = sum(claim.verdict == "close" for claim in claims)
+    assert count.text == f"{expected} of {len(claims)} rows"
+    shown = visible_rows(browser)
+    assert len(shown) == expected and all(row[8] == "close" for row in shown)
+
+    Select(browser.find_element(By.ID, "ledger-filter-chapter")).select_by_value("Chapter 4")
+    shown = visible_rows(browser)
+    assert shown and all(row[1] == "Chapter 4" and row[8] == "close" for row in shown)
+
+    Select(browser.find_element(By.ID, "ledger-filter-verdict")).select_by_value("")
+    Select(browser.find_element(By.ID, "ledger-filter-chapter")).select_by_value("")
+    assert len(visible_rows(browser)) == len(claims)
+    computed = browser.find_element(
+        By.XPATH, "//table[contains(@class,'ledger-table')]//th[normalize-space()='computed']"
+    )
+    click(browser, computed)  # numbers sort as numbers: 1e-05 before 0.1 before 10
+    values = [leading_number(row[5]) for row in visible_rows(browser)]
+    assert values == sorted(values), values[:20]
+    click(browser, computed)
+    assert [leading_number(row[5]) for row in visible_rows(browser)] == values[::-1]
+
+
+def leading_number(text: str) -> float:
+    found = re.match(r"[<>]?\s*([-+]?\d*\.?\d+(?:e[-+]?\d+)?)", text, re.I)
+    return float(found.group(1)) if found else float("inf")
+
+
+def visible_rows(driver) -> list[list[str]]:
+    return driver.execute_script(
+        "return [...document.querySelectorAll('table.ledger-table tbody tr')]"
+        ".filter(row => !row.hidden)"
+        ".map(row => [...row.cells].map(cell => cell.textContent.trim()));"
+    )
+
+
+def test_the_search_finds_a_function(browser_installed, browser, served):
+    browser.get(served + "search.html?q=simulate_3dof")
+    wanted = "harp_analysis.engines.threedof.simulate_3dof"
+    wait(
+        browser,
+        lambda d: any(
+            wanted in (a.get_attribute("href") or "")
+            for a in d.find_elements(By.CSS_SELECTOR, "#search-results a")
+        ),
+        "the search found no simulate_3dof",
+    )
+
+
+def test_the_chapters_render_their_figures_and_math(browser_installed, browser, served, shoot):
+    browser.get(served + "chapters/03_modified_kepler.html")
+    wait(browser, lambda d: d.find_elements(By.TAG_NAME, "article"), "no chapter page")
+    outputs = browser.find_elements(By.CSS_SELECTOR, "article .cell_output img")
+    if os.environ.get("HARP_ANALYSIS_DOCS_EXECUTE") != "0":
+        assert outputs, "the chapter shows no figure: were its notebooks run?"
+    wait(browser, lambda d: not images_rendered(d), "an image of the chapter did not render")
+    if browser.find_elements(By.CSS_SELECTOR, "article .math"):
+        wait(
+            browser,
+            lambda d: d.find_elements(By.CSS_SELECTOR, "mjx-container"),
+            "MathJax typeset nothing (it must be served by the site itself)",
+        )
+    browser.get(served + "explorer.html")
+    wait(browser, lambda d: not images_rendered(d), "the explorer's screenshot did not render")
+    assert browser.find_elements(By.CSS_SELECTOR, "article img")
+    shoot(browser, "explorer-page")

@@ -1,0 +1,199 @@
+"""The documentation site's generator and checker (harp_analysis.reporting.site, issue 28),
+without Sphinx: the pages it writes from the registry and the ledger (with made-up computed
+values, so no trajectory is flown), the links they make, the check of a built site's links and
+resources, and the cache keys. `make docs` builds the real site; `make check-docs` opens it in a
+browser (tests/browser/test_docs_site.py)."""
+
+import inspect
+import json
+import re
+
+import pytest
+
+import harp_analysis
+from harp_analysis.foundation import paths
+from harp_analysis.reporting import ledger, registry, site
+
+
+def _rows() -> list[site.LedgerRow]:
+    """Every ledger row as the site shows it, its computed value made up (the text's)."""
+    rows = []
+    for claim in ledger.load_claims():
+        module, _, function = claim.compute.partition(":")
+        rows.append(
+            site.LedgerRow(
+                id=claim.id,
+                chapter=site.chapter_of(claim.source),
+                source=claim.source,
+                statement=claim.statement,
+                text=f"{claim.text_value:g}",
+                computed=f"{claim.text_value:g}",
+                unit=claim.unit,
+                tolerance=f"{claim.tolerance:g}",
+                verdict=claim.verdict,
+                explanation=claim.explanation,
+                figures=claim.figures,
+                module=module,
+                function=function,
+            )
+        )
+    return rows
+
+
+@pytest.fixture(scope="module")
+def pages(tmp_path_factory):
+    target = tmp_path_factory.mktemp("source")
+    chapters = {
+        path.name: f"/chapters/{path.stem}" for path in paths.NOTEBOOKS_DIR.glob("0[1-9]_*.ipynb")
+    }
+    site.write_pages(target, _rows(), chapters, None)
+    return target
+
+
+@pytest.mark.parametrize(
+    ("source", "chapter"),
+    [
+        ("Ch. 4 B, eq 4.8", "Chapter 4"),
+        ("Ch. 3 (introduction)", "Chapter 3"),
+        ("Table 4.1", "Chapter 4"),
+        ("Appendix E", "Appendices"),
+        ("Ch. 6 C-D", "Chapter 6"),
+    ],
+)
+def test_a_row_s_chapter_is_the_one_its_source_cites(source, chapter):
+    assert site.chapter_of(source) == chapter
+
+
+def test_every_ledger_row_has_a_chapter():
+    assert all(site.chapter_of(claim.source) != "Other" for claim in ledger.load_claims())
+
+
+def test_markdown_text_is_escaped_whole():
+    text = "|r| - R, *starred*, `code`, [link](x), <tag>, $math$, a_b_c"
+    escaped = site._md(text)
+    assert re.sub(r"\\(.)", r"\1", escaped) == text  # every character kept
+    assert not re.search(r"(?<!\\)[|*`\[\]<>$]", escaped)  # no markup left unescaped
+
+
+def test_every_registry_entry_has_its_page_with_the_text_s_caption(pages):
+    for entry in registry.load_registry():
+        page = (pages / "gallery" / f"{site._slug(entry.number)}.md").read_text()
+        assert site._md(entry.title) in page
+        assert f"**{site.SHOWN[entry.status]}**" in page
+        if entry.status in registry.DRAWN and entry.file.endswith(".png"):
+            assert f"../figures/{entry.file}" in page
+            assert f"FIG={entry.number}" in page  # the command that regenerates it
+
+
+def test_a_figure_page_links_each_of_its_rows_and_the_function_computing_it(pages):
+    for row in _rows():
+        for number in row.figures:
+            page = (pages / "gallery" / f"{site._slug(number)}.md").read_text()
+            assert f"{{ref}}`{row.id} <claim-{row.id}>`" in page
+            assert f"<{row.module}.{row.function}>`" in page
+
+
+def test_the_ledger_page_has_a_target_per_row_and_its_filters_columns(pages):
+    text = (pages / "ledger.md").read_text()
+    rows = _rows()
+    assert text.count("(claim-") == len(rows) == len({row.id for row in rows})
+    assert ":class: ledger-table" in text
+    for heading in ("chapter", "verdict", "computed by"):
+        assert f"  - {heading}\n" in text
+
+
+def test_the_landing_summary_counts_every_figure(pages):
+    summary = (pages / "_generated" / "summary.md").read_text()
+    drawn = [e for e in registry.load_registry() if not e.extension]
+    assert f"Of the dissertation's {len(drawn)} figures and tables" in summary
+
+
+def test_the_curated_names_page_lists_each_public_name(pages):
+    text = (pages / "api" / "curated.md").read_text()
+    for name in harp_analysis.__all__:
+        assert name in text
+
+
+def test_the_provenance_page_is_the_data_s_readme_with_its_files(pages):
+    text = (pages / "provenance" / "index.md").read_text()
+    assert text.startswith((paths.DATA_DIR / "harp" / "README.md").read_text()[:200])
+    assert (pages / "provenance" / "data" / "appendix_d_barbados.tsv").is_file()
+    assert "](radar.md)" in text
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        name
+        for name in harp_analysis.__all__
+        if name != "__version__" and inspect.isfunction(getattr(harp_analysis, name))
+    ],
+)
+def test_each_public_entry_point_documents_its_parameters_and_returns(name):
+    doc = inspect.getdoc(getattr(harp_analysis, name))
+    assert "Parameters\n----------" in doc and "Returns\n-------" in doc, name
+    for parameter in inspect.signature(getattr(harp_analysis, name)).parameters.values():
+        shown = f"**{parameter.name}" if parameter.kind is parameter.VAR_KEYWORD else parameter.name
+        assert re.search(rf"^{re.escape(shown)} :|^{re.escape(shown)}$", doc, re.M), (
+            name,
+            parameter.name,
+        )
+
+
+# --- the check of a built site ----------------------------------------------------------------
+
+
+def _write(root, name, text):
+    path = root / name
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+
+
+def test_a_sound_site_passes(tmp_path):
+    _write(tmp_path, "index.html", '<a href="page.html#here">x</a><img src="img/a.png">')
+    page = '<p id="here"></p><a href="index.html">back</a><a href="https://example.org/">out</a>'
+    _write(tmp_path, "page.html", page + '<link rel="stylesheet" href="s.css">')
+    _write(tmp_path, "img/a.png", "png")
+    _write(tmp_path, "s.css", "body { background: url('img/a.png'); }")
+    assert site.check_site(tmp_path) == []
+
+
+def test_broken_links_missing_images_and_outside_resources_are_reported(tmp_path):
+    _write(tmp_path, "index.html", '<a href="gone.html">a</a><a href="page.html#nowhere">b</a>'
+           '<img src="missing.png"><script src="https://cdn.example/x.js"></script>'
+           '<link rel="stylesheet" href="s.css">')  # fmt: skip
+    _write(tmp_path, "page.html", "<p id='here'></p>")
+    _write(tmp_path, "s.css", "@import 'https://fonts.example/f.css'; a { b: url(none.woff2) }")
+    problems = "\n".join(site.check_site(tmp_path))
+    for expected in (
+        "'gone.html' reaches no file",
+        "no element id='nowhere'",
+        "'missing.png' is missing",
+        "loads 'https://cdn.example/x.js' from outside",
+        "loads 'https://fonts.example/f.css' from outside",
+        "'none.woff2' is missing",
+    ):
+        assert expected in problems
+
+
+def test_the_cache_key_follows_the_files_it_depends_on(tmp_path):
+    notebook = tmp_path / "n.ipynb"
+    notebook.write_text("{}")
+    before = site.digest(notebook)
+    assert site.digest(notebook) == before
+    notebook.write_text('{"cells": []}')
+    assert site.digest(notebook) != before
+
+
+def test_a_cached_value_is_computed_once_per_key(tmp_path):
+    calls = []
+
+    def compute():
+        calls.append(1)
+        return {"value": len(calls)}
+
+    assert site._cached_json(tmp_path, "thing", "a", compute) == {"value": 1}
+    assert site._cached_json(tmp_path, "thing", "a", compute) == {"value": 1}
+    assert site._cached_json(tmp_path, "thing", "b", compute) == {"value": 2}
+    assert [p.name for p in tmp_path.glob("thing-*.json")] == ["thing-b.json"]  # stale gone
+    assert json.loads((tmp_path / "thing-b.json").read_text()) == {"value": 2}
