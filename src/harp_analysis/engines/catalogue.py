@@ -164,12 +164,39 @@ ENGINE_NAMES = tuple(ENGINES)
 
 
 def get_engine(name: str) -> Engine:
-    """The engine called ``name`` (one of :data:`ENGINE_NAMES`); a ValueError naming them."""
+    """The engine called ``name`` (one of :data:`ENGINE_NAMES`); a ValueError naming them.
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`ENGINE_NAMES`.
+
+    Returns
+    -------
+    Engine
+        The engine's record: its label, its flight, what it models.
+    """
     return ENGINES[check_choice(name, "engine", ENGINES)]
 
 
 def fly(launch: Launch, engine: str = "3dof", **options) -> pd.DataFrame:
     """``launch`` flown by ``engine`` (one of :data:`ENGINE_NAMES`) with the engine's own
     keyword ``options``, as the shared trajectory table of :mod:`harp_analysis.models.trajectory`
-    (``fly(HP_CHAPTER_2, "6dof", rtol=1e-10)``)."""
+    (``fly(HP_CHAPTER_2, "6dof", rtol=1e-10)``).
+
+    Parameters
+    ----------
+    launch : Launch
+        The launch to fly.
+    engine : str
+        One of :data:`ENGINE_NAMES`.
+    **options
+        The engine's own keyword options (its tolerance, output step, ...).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The trajectory table of :mod:`harp_analysis.models.trajectory`, one row per output
+        time in SI units, with the shared metadata in ``frame.attrs``.
+    """
     return get_engine(engine).fly(launch, **options)

@@ -817,7 +817,31 @@ def simulate_eci_mks(
     :func:`mks.simulate_mks`'s.
 
     ``surface_density_kg_m3`` replaces rho0 (kg/m^3; :func:`correction_for_launch`): a site's
-    measured air. ValueError for a launch whose MKS escapes (no apogee or impact)."""
+    measured air. ValueError for a launch whose MKS escapes (no apogee or impact).
+
+    Parameters
+    ----------
+    launch : Launch
+        The launch, on a rotating Earth or not (its wind is left out: the MKS has none).
+    model : str or EciModel
+        The reading of Chapters 5-6's corrections (one of :data:`MODELS`' names, or a model).
+    n_terms : int
+        Terms of the series of eq 3.30.
+    n_points : int
+        Equal steps of angular range from launch to impact (without ``times_s``).
+    times_s : array_like, optional
+        Times (s from launch, sorted) at which to give rows instead.
+    surface_density_kg_m3 : float, optional
+        The air's surface density rho0 (kg/m^3), in place of the launch atmosphere's.
+    warn : bool
+        Warn where the launch leaves the MKS's validity.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The trajectory table of :mod:`harp_analysis.models.trajectory`, one row per output
+        time in SI units, with the shared metadata in ``frame.attrs``.
+    """
     count = whole_number(n_points, "n_points", low=2, high=MAX_ROWS)
     if not isinstance(launch, Launch):
         raise TypeError(
