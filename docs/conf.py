@@ -8,10 +8,13 @@ myst-nb never runs them (``nb_execution_mode = "off"``).
 
 Every warning fails the build (``-W``), broken cross-references included (``-n``, nitpicky):
 the package's docstrings cite each other with Sphinx roles, fully qualified
-(:func:`harp_analysis.engines.mks.for_launch`) or by a dotted suffix (:func:`.atmosphere.day_air`,
-:mod:`.eci`), which the Python domain resolves by searching for the suffix. Third-party types in
-signatures (numpy, pandas, ...) cannot resolve offline, with no inventory to fetch: they are
-ignored by name below, and nothing of the package's own is.
+(:func:`harp_analysis.engines.mks.for_launch`), by a dotted suffix (:func:`.atmosphere.day_air`,
+:mod:`.eci`), or by the name the citing module imports (:func:`case`, ``apogees.drag_area_m2``).
+The Python domain searches for a suffix; ``setup`` below adds the rest (_resolve), and picks the
+nearest of several objects a suffix names (_nearest: ``.atmosphere`` is the model, not the
+figures of it), so a new module that shares a name with another breaks no reference. Third-party
+types in signatures (numpy, pandas, ...) cannot resolve offline, with no inventory to fetch:
+they are ignored by name below, and nothing of the package's own is.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ from __future__ import annotations
 import datetime
 import importlib
 import inspect
+import os
 import re
 import typing
 from pathlib import Path
@@ -129,7 +133,7 @@ _BUILTINS = (
     "ndarray", "Exception", "ValueError", "TypeError", "RuntimeError", "UserWarning",
     "Warning", "NamedTuple", "Enum", "P", "R", "T", "Literal", "Self", "ParamSpec",
     "TypeVar", "Client", "Future", "Lock", "ModuleType",
-    "optional",  # numpy-style "float, optional"
+    "optional", "array_like",  # numpy-style "float, optional", "array_like"
 )  # fmt: skip
 nitpick_ignore_regex = [
     (
@@ -213,20 +217,35 @@ def _numpy_sections(app, what, name, obj, options, lines):
 
 
 def _instance_attribute(node, target: str) -> bool:
-    """Whether ``target`` is an attribute that the class of the reference sets on its instances
-    (``self.escapes = ...``): it exists, but autodoc documents such an attribute only by a "#:"
-    comment, so it is shown without a link."""
-    module, owner = node.get("py:module"), node.get("py:class")
-    if not (module and owner):
+    """Whether ``target`` is an attribute that the class of the reference (or, from a module's
+    summary table, the one class of its module) sets on its instances (``self.kernel = ...``):
+    it exists, but autodoc documents such an attribute only by a "#:" comment, so it is shown
+    without a link."""
+    module_name, owner = node.get("py:module"), node.get("py:class")
+    if not module_name:
         return False
     try:
-        cls = importlib.import_module(module)
-        for part in owner.split("."):
-            cls = getattr(cls, part)
-        source = inspect.getsource(cls)
-    except (ImportError, AttributeError, OSError, TypeError):
+        module = importlib.import_module(module_name)
+    except ImportError:
         return False
-    return re.search(rf"\bself\.{re.escape(target)}\s*(:[^=]*)?=", source) is not None
+    if owner:
+        candidates = [module]
+        for part in owner.split("."):
+            candidates = [getattr(candidates[0], part, None)]
+    else:
+        candidates = [
+            value
+            for value in vars(module).values()
+            if inspect.isclass(value) and value.__module__ == module_name
+        ]
+    setting = re.compile(rf"\bself\.{re.escape(target)}\s*(:[^=]*)?=")
+    found = []
+    for cls in candidates:
+        try:
+            found += [cls] if setting.search(inspect.getsource(cls)) else []
+        except (OSError, TypeError):
+            pass
+    return len(found) == 1
 
 
 def _in_namespace(node, target: str) -> str | None:
@@ -258,10 +277,52 @@ def _in_namespace(node, target: str) -> str | None:
     return ".".join([home, *rest])
 
 
-def _by_suffix(app, env, node, contnode):
-    """Resolve a Python reference no exact lookup found by the package object whose full name
-    ends with it (``Launch`` in a signature, ``mks.ModifiedKeplerSolution``): only when exactly
-    one object of the package matches, so an ambiguous name is still a warning."""
+def _through_a_package(domain, target: str) -> str | None:
+    """The full name of ``target`` read through a module named by a unique dotted suffix: a
+    name a package re-exports (``fire_control.verify_with_3dof``, defined in
+    ``fire_control.verification``), followed to where it is defined."""
+    parts = target.split(".")
+    for cut in range(len(parts) - 1, 0, -1):
+        head = ".".join(parts[:cut])
+        modules = [m for m in domain.modules if m == head or m.endswith("." + head)]
+        found = set()
+        for module in modules:
+            first = getattr(importlib.import_module(module), parts[cut], None)
+            owner = getattr(first, "__module__", None)
+            if first is None or inspect.ismodule(first):
+                continue
+            defined = inspect.isclass(first) or inspect.isroutine(first)
+            if not (defined and isinstance(owner, str)):
+                # a constant: the documented one that is the same object
+                found |= {
+                    name
+                    for name in domain.objects
+                    if name.endswith("." + parts[cut])
+                    and getattr(
+                        importlib.import_module(domain.objects[name].docname.split("/")[-1]),
+                        parts[cut],
+                        None,
+                    )
+                    is first
+                }
+                continue
+            # a name defined elsewhere and re-exported here, or a member of it
+            qualified = ".".join([owner, first.__name__ if inspect.isclass(first) else parts[cut]])
+            full = ".".join([qualified, *parts[cut + 1 :]])
+            if full in domain.objects:
+                found.add(full)
+        if len(found) == 1:
+            return found.pop()
+    return None
+
+
+def _resolve(app, env, node, contnode):
+    """A Python reference the domain's own lookup did not find: the name as the citing module
+    sees it (_in_namespace), or read through a package that re-exports it
+    (_through_a_package); a private name, an instance attribute or a type variable shown
+    unlinked; else the package object whose full name ends with it (``Launch`` in a signature,
+    ``mks.ModifiedKeplerSolution``), the nearest of several (_nearest). An unknown or still
+    ambiguous name is left to Sphinx's warning."""
     if node.get("refdomain") != "py":
         return None
     from sphinx.util.nodes import make_refnode
@@ -269,6 +330,8 @@ def _by_suffix(app, env, node, contnode):
     target = node["reftarget"].lstrip(".~")
     domain = env.domains["py"]
     seen = _in_namespace(node, target)
+    if seen not in domain.objects:
+        seen = _through_a_package(domain, target)
     if seen in domain.objects:
         entry = domain.objects[seen]
         return make_refnode(
@@ -292,6 +355,8 @@ def _by_suffix(app, env, node, contnode):
         for name in domain.objects
         if name.startswith("harp_analysis") and (name == target or name.endswith("." + target))
     ]
+    if len(matches) > 1 and node.get("py:module"):
+        matches = [name for name, _ in _nearest([(m, None) for m in matches], node["py:module"])]
     if len(matches) != 1:
         return None
     entry = domain.objects[matches[0]]
@@ -300,9 +365,48 @@ def _by_suffix(app, env, node, contnode):
     )
 
 
+def _layer(name: str) -> int:
+    """The layer of a module of the package, lowest first (pyproject's import-linter layers)."""
+    for depth, layer in enumerate(("foundation", "models", "engines", "analyses", "reporting")):
+        if name.startswith(f"harp_analysis.{layer}"):
+            return depth
+    return 5
+
+
+def _nearest(matches: list, module: str) -> list:
+    """Of several objects a dotted suffix names (``.atmosphere``: the model and the figures of
+    it), the one a docstring of ``module`` means: not the module itself, then the one sharing
+    the longest package path with it, then the one in the lowest layer (a module cites those it
+    builds on); all of them if that leaves more than one, and Sphinx warns."""
+    others = [m for m in matches if m[0] != module]
+    if len(others) <= 1:
+        return others or matches
+
+    def shared(name: str) -> int:
+        return len(os.path.commonprefix([name.split("."), module.split(".")]))
+
+    best = max(shared(m[0]) for m in others)
+    others = [m for m in others if shared(m[0]) == best]
+    lowest = min(_layer(m[0]) for m in others)
+    others = [m for m in others if _layer(m[0]) == lowest]
+    return others if len(others) == 1 else matches
+
+
 def setup(app):
+    from sphinx.domains.python import PythonDomain
+
+    class PackagePython(PythonDomain):
+        """The Python domain, choosing among several objects a dotted suffix names (_nearest)."""
+
+        def find_obj(self, env, modname, classname, name, type, searchmode=0):
+            matches = super().find_obj(env, modname, classname, name, type, searchmode)
+            if len(matches) > 1 and modname and modname.startswith("harp_analysis"):
+                matches = _nearest(matches, modname)
+            return matches
+
+    app.add_domain(PackagePython, override=True)
     app.connect("autodoc-process-docstring", _no_type_docstring, priority=300)
     app.connect("autodoc-process-docstring", _plain_bars, priority=400)
     app.connect("autodoc-process-docstring", _numpy_sections)
     app.connect("autodoc-skip-member", _skip_third_party)
-    app.connect("missing-reference", _by_suffix)
+    app.connect("missing-reference", _resolve)

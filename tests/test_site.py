@@ -116,7 +116,7 @@ def test_the_curated_names_page_lists_each_public_name(pages):
 
 def test_the_provenance_page_is_the_data_s_readme_with_its_files(pages):
     text = (pages / "provenance" / "index.md").read_text()
-    assert text.startswith((paths.DATA_DIR / "harp" / "README.md").read_text()[:200])
+    assert text.startswith((paths.ROOT / "data" / "harp" / "README.md").read_text()[:200])
     assert (pages / "provenance" / "data" / "appendix_d_barbados.tsv").is_file()
     assert "](radar.md)" in text
 

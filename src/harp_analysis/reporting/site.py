@@ -742,7 +742,7 @@ def write_pages(
     pages["benchmarks.md"] = _benchmarks_page(benchmarks)
     pages["api/curated.md"] = _curated_page()
     pages["chapters/index.md"] = _chapters_index(list(chapter_pages.values()))
-    harp = paths.DATA_DIR / "harp"
+    harp = paths.ROOT / "data" / "harp"
     readme = (harp / "README.md").read_text()
     data_files = sorted(p.name for p in harp.glob("*.tsv")) + ["SHA256SUMS"]
     pages["provenance/index.md"] = (
