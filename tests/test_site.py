@@ -68,11 +68,14 @@ def test_every_ledger_row_has_a_chapter():
     assert all(site.chapter_of(claim.source) != "Other" for claim in ledger.load_claims())
 
 
-def test_markdown_text_is_escaped_whole():
-    text = "|r| - R, *starred*, `code`, [link](x), <tag>, $math$, a_b_c"
+@pytest.mark.parametrize(
+    "text", ["|r| - R, *starred*, `code`, [link](x), <tag>, $math$, a_b_c", "-", "1. first"]
+)
+def test_markdown_text_is_escaped_whole(text):
     escaped = site._md(text)
     assert re.sub(r"\\(.)", r"\1", escaped) == text  # every character kept
-    assert not re.search(r"(?<!\\)[|*`\[\]<>$]", escaped)  # no markup left unescaped
+    assert not re.search(r"(?<!\\)[|*`\[\]<>$-]", escaped)  # no markup left unescaped
+    assert not re.match(r"\d+[.)]", escaped)  # nor a list's number
 
 
 def test_every_registry_entry_has_its_page_with_the_text_s_caption(pages):

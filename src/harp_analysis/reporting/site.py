@@ -46,6 +46,7 @@ from dataclasses import asdict, dataclass
 from datetime import UTC, datetime
 from html.parser import HTMLParser
 from pathlib import Path
+from typing import Any
 from urllib.parse import unquote, urlsplit
 
 from ..foundation import paths
@@ -112,7 +113,7 @@ def digest(*extra: Path) -> str:
     return hasher.hexdigest()[:16]
 
 
-def _cached_json(cache: Path, name: str, key: str, compute) -> object:
+def _cached_json(cache: Path, name: str, key: str, compute) -> Any:
     """``compute()``, or what it returned last under the same ``key`` (a JSON file in
     ``cache``; older entries of ``name`` are removed)."""
     target = cache / f"{name}-{key}.json"
@@ -290,13 +291,15 @@ def run_benchmarks(cache: Path, mode: str = "full") -> dict:
 
 # --- the generated pages ----------------------------------------------------------------------
 
-_PUNCTUATION = re.compile(r"([\\`*_{}\[\]<>()#+!|$~^&])")
+_PUNCTUATION = re.compile(r"([\\`*_{}\[\]<>()#+!|$~^&-])")
 
 
 def _md(text: str) -> str:
     """``text`` as literal Markdown inline text: every character MyST could read as markup
-    escaped (CommonMark lets any ASCII punctuation be escaped), line breaks folded."""
-    return _PUNCTUATION.sub(r"\\\1", " ".join(text.split()))
+    escaped (CommonMark lets any ASCII punctuation be escaped; "-" or "1." alone would start a
+    list), line breaks folded."""
+    escaped = _PUNCTUATION.sub(r"\\\1", " ".join(text.split()))
+    return re.sub(r"^(\d+)([.)])", r"\1\\\2", escaped)
 
 
 def _slug(number: str) -> str:
