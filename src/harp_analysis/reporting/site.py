@@ -333,7 +333,7 @@ def _regenerate(entry: RegistryEntry) -> str:
     return f"make figures FIG={entry.number}"
 
 
-def _rows_table(rows: list[LedgerRow], entries: dict[str, RegistryEntry]) -> list[str]:
+def _rows_table(rows: list[LedgerRow]) -> list[str]:
     """A figure page's ledger rows: each linked to its row of the ledger and to the API entry of
     the function that computes it."""
     lines = [
@@ -362,12 +362,7 @@ def _rows_table(rows: list[LedgerRow], entries: dict[str, RegistryEntry]) -> lis
     return [*lines, ":::"]
 
 
-def _figure_page(
-    entry: RegistryEntry,
-    rows: list[LedgerRow],
-    entries: dict[str, RegistryEntry],
-    chapter_pages: dict[str, str],
-) -> str:
+def _figure_page(entry: RegistryEntry, rows: list[LedgerRow], chapter_pages: dict[str, str]) -> str:
     lines = [f"({_slug(entry.number)})=", f"# {entry.label}: {_md(entry.title)}", ""]
     drawn = entry.status in DRAWN and entry.file
     text_caption = [
@@ -428,7 +423,7 @@ def _figure_page(
             "to its line of the {doc}`ledger </ledger>` (the explanation, the tolerance) and "
             "to the function that computes it.",
             "",
-            *_rows_table(rows, entries),
+            *_rows_table(rows),
         ]
     else:
         lines += ["No ledger row speaks about it."]
@@ -734,7 +729,7 @@ def write_pages(
     figure_pages = []
     for e in entries:
         pages[f"gallery/{_slug(e.number)}.md"] = _figure_page(
-            e, tied.get(e.number, []), by_number, chapter_pages
+            e, tied.get(e.number, []), chapter_pages
         )
         figure_pages.append(_slug(e.number))
     pages["gallery/index.md"] = _gallery_index(entries, tied, figure_pages)
