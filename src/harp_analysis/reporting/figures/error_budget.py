@@ -199,7 +199,7 @@ def draw_harp_confidence(
     residuals: pd.DataFrame, transfers: pd.DataFrame, text_std_km: dict, text_mean_km: dict
 ):
     """Figure X.5: (a) each site's residual mean (circle) and standard deviation (square) with
-    their 95 % intervals (Student's t, Bonett's: harp_confidence.residual_intervals); (b) the
+    their 95 % intervals (Student's t, Bonett's: confidence.residual_intervals); (b) the
     mean residual of one site's rounds predicted with the drag area fitted at the other, with
     the text's densities (triangle) and with each site's density following its Mach-column
     temperature (diamond), with bootstrap intervals. In both panels a marker is open
