@@ -29,10 +29,16 @@ def notebooks() -> list[Path]:
     return sorted(paths.NOTEBOOKS_DIR.glob("*.ipynb"))
 
 
-def execute_notebook(path: Path, figures_dir: Path | None = None, timeout_s: int = 600) -> float:
+def execute_notebook(
+    path: Path,
+    figures_dir: Path | None = None,
+    timeout_s: int = 600,
+    executed_path: Path | None = None,
+) -> float:
     """Run notebook ``path`` in a fresh kernel from its own folder; return the seconds it took.
 
-    ``figures_dir`` redirects :func:`~harp_analysis.reporting.plotting.save_figure` for this run.
+    ``figures_dir`` redirects :func:`~harp_analysis.reporting.plotting.save_figure` for this run;
+    ``executed_path``, if given, receives the notebook with its outputs (the documentation site's).
     """
     import nbformat
     from nbclient import NotebookClient
@@ -49,6 +55,8 @@ def execute_notebook(path: Path, figures_dir: Path | None = None, timeout_s: int
         resources={"metadata": {"path": str(path.parent)}},
     )
     client.execute(env=environment)  # passed on to the kernel manager's start_kernel
+    if executed_path is not None:
+        paths.write_atomically(executed_path, lambda target: nbformat.write(notebook, target))
     return time.perf_counter() - start
 
 

@@ -50,6 +50,7 @@ from typing import Any
 from urllib.parse import unquote, urlsplit
 
 from ..foundation import paths
+from .build import execute_notebook
 from .ledger import VERDICTS, evaluate_all, printed_digits
 from .registry import DRAWN, RegistryEntry, load_registry
 
@@ -208,23 +209,6 @@ def evaluated_ledger(cache: Path) -> list[LedgerRow]:
 # --- the notebooks, run once ------------------------------------------------------------------
 
 
-def _run_notebook(source: Path, target: Path, figures_dir: Path, timeout_s: int) -> float:
-    import nbformat
-    from nbclient import NotebookClient
-
-    start = time.perf_counter()
-    notebook = nbformat.read(source, as_version=4)
-    client = NotebookClient(
-        notebook,
-        timeout=timeout_s,
-        kernel_name="python3",
-        resources={"metadata": {"path": str(source.parent)}},
-    )
-    client.execute(env={**os.environ, "HARP_ANALYSIS_FIGURES_DIR": str(figures_dir)})
-    paths.write_atomically(target, lambda path: nbformat.write(notebook, path))
-    return time.perf_counter() - start
-
-
 def run_notebooks(
     notebooks: list[Path], cache: Path, jobs: int = 2, timeout_s: int = 1200
 ) -> dict[Path, Path]:
@@ -245,7 +229,7 @@ def run_notebooks(
     figures_dir.mkdir(parents=True, exist_ok=True)
 
     def run(path: Path) -> tuple[Path, float]:
-        return path, _run_notebook(path, executed[path], figures_dir, timeout_s)
+        return path, execute_notebook(path, figures_dir, timeout_s, executed_path=executed[path])
 
     # The later chapters' notebooks are the longer ones: started first, they end with the rest.
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
