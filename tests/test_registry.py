@@ -120,6 +120,7 @@ def test_a_reproduced_figure_without_rows_says_the_text_states_no_number(
     class Reproduces:  # a ledger result that reproduces
         class claim:
             verdict = "reproduces"
+            exempt: dict = {}
 
     monkeypatch.setattr(gallery, "load_registry", lambda: (_figure(no_number),))
     monkeypatch.setattr(gallery, "claims_by_figure", lambda: {"9.9": [Reproduces] * len(rows)})

@@ -3,9 +3,13 @@ it, and the check that the registry's statuses agree with the ledger.
 
 A figure is "reproduced" only when every ledger row about it reproduces; a drawn figure with a
 row that is close or does not reproduce is "drawn, deviates", and the gallery links the rows.
-The project's own figures (registry ``extension = true``, numbered X.1, X.2, ...) follow in a
-section of their own, "Beyond the dissertation": there is nothing in the text to reproduce, so
-they are "drawn, extension", held by the tests their reason names.
+A row tied to a figure by its paragraph but about what the figure cannot draw is exempted from
+its status with the reason (the ledger's ``exempt``), and listed as such. The project's own
+figures (registry ``extension = true``, numbered X.1, X.2, ...) follow in a section of their
+own, "Beyond the dissertation": "drawn, extension", held by the tests their reason names; where
+one draws a number the text states, the ledger scores it there too. Reasons and captions quote
+the ledger's numbers (:func:`.ledger.quote_rows`), and each figure lists the extension results
+measured about it.
 """
 
 from __future__ import annotations
@@ -13,10 +17,17 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..foundation import paths
-from .ledger import ClaimResult, claims_by_figure
+from .ledger import (
+    ClaimResult,
+    MeasuredResult,
+    bearing_on,
+    claims_by_figure,
+    measurements_by_figure,
+    quote_rows,
+)
 from .registry import DRAWN, STATUSES, RegistryEntry, load_registry
 
-__all__ = ["render_gallery", "status_problems"]
+__all__ = ["render_gallery", "status_problems", "reason_text", "caption_text"]
 
 _SHOWN = {
     "reproduced": "reproduced",
@@ -49,7 +60,7 @@ def status_problems() -> list[str]:
     tied = claims_by_figure()
     problems = []
     for entry in load_registry():
-        rows = tied.get(entry.number, [])
+        rows = bearing_on(entry.number, tied.get(entry.number, []))
         deviating = [r for r in rows if r.claim.verdict != "reproduces"]
         if entry.status == "reproduced" and deviating:
             problems.append(
@@ -67,24 +78,58 @@ def status_problems() -> list[str]:
     return problems
 
 
-def _line(entry: RegistryEntry, tied: list[ClaimResult]) -> str:
+def reason_text(entry: RegistryEntry) -> str:
+    """``entry``'s reason as a reader sees it: the ledger's numbers quoted in."""
+    return quote_rows(entry.reason)
+
+
+def caption_text(entry: RegistryEntry) -> str:
+    """``entry``'s caption as a reader sees it: the ledger's numbers quoted in."""
+    return quote_rows(entry.caption)
+
+
+def _exempted(entry: RegistryEntry, tied: list[ClaimResult]) -> str:
+    """The rows exempted from ``entry``'s status, each with its reason."""
+    return " ".join(
+        f"Not bearing on it: [`{r.claim.id}`](CLAIMS.md#{r.claim.id}) ({r.claim.verdict}): "
+        f"{r.claim.exempt[entry.number]}"
+        for r in tied
+        if entry.number in r.claim.exempt
+    )
+
+
+def _measured(results: list[MeasuredResult]) -> str:
+    return ", ".join(f"[`{r.row.id}`](CLAIMS.md#{r.row.id})" for r in results)
+
+
+def _line(entry: RegistryEntry, tied: list[ClaimResult], measured: list[MeasuredResult]) -> str:
     notebook = f"[{entry.notebook}](../notebooks/{entry.notebook})" if entry.notebook else ""
-    reason = entry.reason
-    if entry.status in ("deviates", "partial") and _rows(tied, True):
-        reason = f"{reason} Rows: {_rows(tied, True)}."
+    reason = reason_text(entry)
+    bearing = bearing_on(entry.number, tied)
+    if entry.status in ("deviates", "partial", "extension") and _rows(bearing, True):
+        reason = f"{reason} Rows: {_rows(bearing, True)}."
+    if _exempted(entry, tied):
+        reason = f"{reason} {_exempted(entry, tied)}".strip()
+    if measured:
+        reason = f"{reason} Extension results: {_measured(measured)}.".strip()
     if entry.no_number:
         reason = f"{reason} No ledger row: {entry.no_number}".strip()
     return (
         f"| {entry.label} | {entry.title} | {entry.figure_class} | "
-        f"{_SHOWN[entry.status]} | {notebook} | {reason} |"
+        f"{_SHOWN[entry.status]} | {notebook} | {_cell(reason)} |"
     )
+
+
+def _cell(text: str) -> str:
+    """Text safe inside a Markdown table cell: a literal | would end the cell."""
+    return text.replace("|", "\\|").replace("\n", " ")
 
 
 def render_gallery(target: Path | None = None) -> Path:
     """Write the gallery: every entry with its status, reason and ledger rows, then each drawn
     figure with its caption (PNG shown, vector PDF linked)."""
     target = Path(target) if target else paths.FIGURES_DIR / "README.md"
-    tied = claims_by_figure()
+    tied, measured = claims_by_figure(), measurements_by_figure()
     entries = [e for e in load_registry() if not e.extension]
     extensions = [e for e in load_registry() if e.extension]
     counts = {
@@ -103,29 +148,36 @@ def render_gallery(target: Path | None = None) -> Path:
         + f" ({len(entries)} in all).",
         "",
         *_TABLE_HEAD,
-        *(_line(e, tied.get(e.number, [])) for e in entries),
+        *(_line(e, tied.get(e.number, []), measured.get(e.number, [])) for e in entries),
         "",
     ]
-    lines += _drawn(entries, tied)
+    lines += _drawn(entries, tied, measured)
     if extensions:
         lines += [
             "# Beyond the dissertation",
             "",
             "The project's own figures, numbered outside the dissertation's numbering: what the "
-            "text's methods make possible but the text does not draw. Nothing in the text to "
-            "reproduce; each is held by the tests its reason names "
-            f"({len(extensions)} in all).",
+            "text's methods make possible but the text does not draw. The figures themselves are "
+            "not the text's, so they carry no reproduction status; each is held by the tests its "
+            "reason names. Where one draws a number the text does state, the ledger scores that "
+            "number (the rows linked, failing ones included), and what the project measures of "
+            "its own work is listed as extension results, measured and not scored "
+            f"({len(extensions)} figures in all).",
             "",
             *_TABLE_HEAD,
-            *(_line(e, tied.get(e.number, [])) for e in extensions),
+            *(_line(e, tied.get(e.number, []), measured.get(e.number, [])) for e in extensions),
             "",
-            *_drawn(extensions, tied),
+            *_drawn(extensions, tied, measured),
         ]
     text = "\n".join(lines)
     return paths.write_atomically(target, lambda path: path.write_text(text))
 
 
-def _drawn(entries: list[RegistryEntry], tied: dict[str, list[ClaimResult]]) -> list[str]:
+def _drawn(
+    entries: list[RegistryEntry],
+    tied: dict[str, list[ClaimResult]],
+    measured: dict[str, list[MeasuredResult]],
+) -> list[str]:
     """A section per drawn figure of ``entries``: its caption, status and image."""
     lines: list[str] = []
     for e in entries:
@@ -135,14 +187,18 @@ def _drawn(entries: list[RegistryEntry], tied: dict[str, list[ClaimResult]]) -> 
             shown = f"![{e.label}]({e.file})\n\nVector: [{e.file[:-4]}.pdf]({e.file[:-4]}.pdf)"
         else:
             shown = f"[{e.file}]({e.file})"
-        rows = _rows(tied.get(e.number, []))
+        rows = _rows(bearing_on(e.number, tied.get(e.number, [])))
+        exempted = _exempted(e, tied.get(e.number, []))
+        results = _measured(measured.get(e.number, []))
         lines += [
             f"## {e.label}: {e.title}",
             "",
-            f"*{e.caption}*" if e.caption else "",
+            f"*{caption_text(e)}*" if e.caption else "",
             "",
             f"Status: {_SHOWN[e.status]}. Drawn by `notebooks/{e.notebook}`."
-            + (f" Ledger rows: {rows}." if rows else ""),
+            + (f" Ledger rows: {rows}." if rows else "")
+            + (f" {exempted}" if exempted else "")
+            + (f" Extension results: {results}." if results else ""),
             "",
             shown,
             "",
