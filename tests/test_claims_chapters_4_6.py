@@ -263,6 +263,31 @@ def test_site_equivalence_is_the_two_one_sided_welch_tests(margin_m):
     assert (p < 0.05) is (margin_m == 5000.0)
 
 
+@pytest.mark.parametrize("margin_m", [300.0, 1000.0, 2600.0, 5000.0])
+def test_site_mean_difference_is_welchs_interval_and_tost_s(margin_m):
+    """Issue 34: the sites' difference with its 90 % Welch interval, by hand (Welch-Satterthwaite
+    degrees of freedom, Student's t quantile), and the interval's duality with the two one-sided
+    tests: inside +-margin exactly when TOST shows equivalence at 5 %."""
+    samples = []
+    for site in ("barbados", "yuma"):
+        frame = apogees.predicted_apogees(site)
+        samples.append(frame.residual_m[~frame.duplicate_of_earlier_row].to_numpy())
+    (a, b) = samples
+    va, vb = a.var(ddof=1) / a.size, b.var(ddof=1) / b.size
+    dof = (va + vb) ** 2 / (va**2 / (a.size - 1) + vb**2 / (b.size - 1))
+    half = stats.t.ppf(0.95, dof) * math.sqrt(va + vb)
+    found = apogees.site_mean_difference("residual")
+    assert found.estimate == pytest.approx(b.mean() - a.mean(), rel=1e-12)
+    assert (found.low, found.high) == pytest.approx(
+        (b.mean() - a.mean() - half, b.mean() - a.mean() + half), rel=1e-9
+    )
+    shown = max(abs(found.low), abs(found.high)) <= margin_m
+    assert shown is (apogees.site_equivalence_p_value("residual", margin=margin_m) < 0.05)
+    relative = apogees.site_mean_difference("residual", relative=True)
+    share = abs(np.concatenate([a, b]).mean())
+    assert relative.high == pytest.approx(found.high / share, rel=1e-12)
+
+
 def test_bearings_temperatures_and_splash():
     assert apogees.bearing_from_east_deg("barbados") == pytest.approx(19.0)
     assert apogees.bearing_from_east_deg() == pytest.approx(19.0)

@@ -121,6 +121,8 @@ __all__ = [
     "mlt_flops",
     "effort_table",
     "orders_of_magnitude",
+    "operations_per_3dof_evaluation",
+    "mks_evaluation_operations",
     "best_time",
 ]
 
@@ -581,3 +583,18 @@ def orders_of_magnitude(method: str, than: str = "MKS (3 terms)") -> float:
     "MKS (3 terms)", ...)."""
     flops = effort_table(timed=False).flops
     return float(np.log10(flops[method] / flops[than]))
+
+
+def operations_per_3dof_evaluation() -> float:
+    """Operations of one 3DOF evaluation with its share of DOP853's arithmetic: Fig 4.7's count
+    of HP's flight (:func:`effort_table`) over the flight's right-hand-side evaluations."""
+    from ..models.launch import HP_CHAPTER_2
+
+    flops = effort_table(timed=False).flops["3DOF"]
+    return float(flops) / catalogue.get_engine("3dof").fly(HP_CHAPTER_2).attrs["rhs_evaluations"]
+
+
+def mks_evaluation_operations() -> float:
+    """Operations of one three-term MKS evaluation as Fig 4.7 counts it (an apogee, its
+    constants included: :func:`effort_table`)."""
+    return float(effort_table(timed=False).flops["MKS (3 terms)"])

@@ -12,6 +12,7 @@ for ``density_altitude="spherical"`` (:mod:`.sixdof` explains the flat-altitude 
 from __future__ import annotations
 
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
@@ -26,7 +27,8 @@ from .scenarios import max_distance_m
 
 __all__ = [
     "method_comparison",
-    "mlt_max_position_difference_km",
+    "MltAgainst6dof",
+    "mlt_against_6dof",
     "sixdof_convergence",
     "coefficient_point_convergence",
     "linear_theory_budget",
@@ -67,11 +69,32 @@ def method_comparison(projectile: str, density_altitude: str = "spherical") -> p
     return pd.DataFrame(rows).T
 
 
-def mlt_max_position_difference_km(projectile: str, density_altitude: str = "spherical") -> float:
-    """The largest MLT-6DOF distance at the same time along the flight (km): the ledger's
-    measure of "MLT predict the projectile motion accurately" (Ch. 2 B)."""
+@dataclass(frozen=True)
+class MltAgainst6dof:
+    """MLT against the 6DOF over one reference flight (:func:`mlt_against_6dof`)."""
+
+    max_position_difference_km: float  # the largest distance at the same time
+    mlt_cross_range_km: float  # at impact
+    sixdof_cross_range_km: float
+    apogee_difference_m: float  # MLT minus 6DOF
+    range_difference_share: float  # of the 6DOF's range
+    time_of_flight_difference_s: float
+
+
+def mlt_against_6dof(projectile: str, density_altitude: str = "spherical") -> MltAgainst6dof:
+    """MLT against the 6DOF for ``projectile``'s reference flight (:func:`method_comparison`):
+    the largest distance at the same time along the flight, the ledger's measure of "MLT
+    predict the projectile motion accurately" (Ch. 2 B), and where it comes from."""
     table = method_comparison(projectile, density_altitude)
-    return float(table.loc["MLT - 6DOF", "max_position_difference_m"] / 1e3)
+    six, gap = table.loc["6DOF (value)"], table.loc["MLT - 6DOF"]
+    return MltAgainst6dof(
+        float(gap.max_position_difference_m) / 1e3,
+        float(six.cross_range_m + gap.cross_range_m) / 1e3,
+        float(six.cross_range_m) / 1e3,
+        float(gap.apogee_m),
+        float(gap.range_m / six.range_m),
+        float(gap.time_of_flight_s),
+    )
 
 
 @cached_copies

@@ -23,13 +23,11 @@ from ...foundation.validation import ModelValidityWarning, check_choice, check_r
 from ...models.projectiles import BASELINE
 from .. import rotating, scenarios
 from ..comparisons import BASELINE_ELEVATIONS_DEG, VARIANTS, case, fly, launch_error_at_apogee_km
-from ..harp import apogees
 from .launches import no_wind
 
 __all__ = [
     "ReentrySpeedLoss",
     "reentry_speed_loss",
-    "spread_over_mks_error",
     "beta_accuracy_limit",
     "beta_limit_elevation_deg",
     "min_mach_below",
@@ -55,13 +53,18 @@ class ReentrySpeedLoss:
         return 1.0 - self.impact_speed_m_s / self.peak_speed_m_s
 
 
-def reentry_speed_loss(engine: str = "6DOF", projectile: str = "HP") -> ReentrySpeedLoss:
+def reentry_speed_loss(
+    engine: str = "6DOF", projectile: str = "HP", density_altitude: str = "flat"
+) -> ReentrySpeedLoss:
     """Fig 4.3's speed drop on re-entry of Chapter 2 A's flight of ``projectile`` by the 6DOF,
     MLT or 3DOF (Ch. 4 A: "the sharp decrease in velocity that indicates reentry into the
-    atmosphere in the MLT and numerical simulations")."""
+    atmosphere in the MLT and numerical simulations"). The rigid bodies meet the air at
+    ``density_altitude``: "flat", the flat frame's, as Appendix B codes it and Fig 4.3 draws
+    it, or "spherical", the true altitude, as the 3DOF always does."""
+    check_choice(density_altitude, "density_altitude", ("flat", "spherical"))
     flights: dict[str, Callable[[str], pd.DataFrame]] = {
-        "6DOF": scenarios.reference_6dof,
-        "MLT": scenarios.reference_mlt,
+        "6DOF": lambda name: scenarios.reference_6dof(name, density_altitude),
+        "MLT": lambda name: scenarios.reference_mlt(name, density_altitude),
         "3DOF": scenarios.reference_3dof,
     }
     flight = flights[check_choice(engine, "engine", tuple(flights))](projectile)
@@ -74,19 +77,6 @@ def reentry_speed_loss(engine: str = "6DOF", projectile: str = "HP") -> ReentryS
         float(peak.altitude_m) / 1e3,
         float((duration - peak.time_s) / duration),
     )
-
-
-def spread_over_mks_error(
-    site: str = "barbados",
-    latitude_deg: float = 0.0,
-    bearing_deg: float = 90.0,
-    elevation_deg: float = 85.0,
-) -> float:
-    """Standard deviation of the apogee residuals at ``site`` (dissertation model) over the ECI
-    MKS's error at apogee against the rotating 3DOF for the baseline fired at
-    ``elevation_deg`` on ``bearing_deg`` from ``latitude_deg`` (Ch. 5's 85 deg east case)."""
-    spread = apogees.residual_statistic(site, "std")
-    return spread / rotating.error_at_apogee_km(latitude_deg, bearing_deg, elevation_deg)
 
 
 # --- Chapter 4 B: beta and the baseline -----------------------------------------------------------

@@ -19,7 +19,7 @@ from scipy.optimize import brentq
 from ...engines import mks, threedof
 from ...foundation import earth
 from ...foundation.validation import check_choice, check_range, finite_scalar, positive_scalar
-from ...models.launch import HP_CHAPTER_2, Launch, baseline_chapter_4
+from ...models.launch import Launch, baseline_chapter_4
 from .. import effort
 from ..comparisons import BASELINE_ELEVATIONS_DEG, case, chapter_4_launch, launch_error_at_apogee_km
 
@@ -128,13 +128,14 @@ def firing_solutions_per_3dof_solution(**target) -> SolutionsPerSolve:
     """How many MKS firing solutions cost the operations of one 3DOF firing solution, as
     ``log10_solutions`` (:func:`firing_solution`; operations per 3DOF evaluation and per MKS
     evaluation from :func:`effort.effort_table`'s counts for HP's flight and apogee)."""
-    table = effort.effort_table()
-    per_evaluation = (
-        float(table.flops["3DOF"]) / threedof.simulate_3dof(HP_CHAPTER_2).attrs["rhs_evaluations"]
-    )
     _, iterations, _ = firing_solution("mks", **target)
     three = firing_solution("3dof", **target)[2]
-    return SolutionsPerSolve(three, per_evaluation, iterations, float(table.flops["MKS (3 terms)"]))
+    return SolutionsPerSolve(
+        three,
+        effort.operations_per_3dof_evaluation(),
+        iterations,
+        effort.mks_evaluation_operations(),
+    )
 
 
 # --- Chapter 7 B-C: other uncertainties, ground fire ----------------------------------------------

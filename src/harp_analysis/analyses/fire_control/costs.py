@@ -1,7 +1,9 @@
-"""Chapter 7 A's counts and timings, built: the MKS trajectories of a firing solution against
-the 3DOF's equations of motion (:func:`shoot_3dof`, the iterative 3DOF firing solution alone),
-a raid's MKS intercepts against one iterative 3DOF intercept, and one verified firing
-solution's wall time, by default in :func:`.firing.barbados_case`.
+"""Chapter 7 A's counts, built: the MKS trajectories of a firing solution against the 3DOF's
+equations of motion (:func:`shoot_3dof`, the iterative 3DOF firing solution alone), a raid's
+MKS intercepts against one iterative 3DOF intercept, and one verified firing solution's
+operations, by default in :func:`.firing.barbados_case`. Counts, not wall times: the ledger
+reads them and must come out the same on every machine; the wall times of the same work are
+``benchmarks/bench_fire_control.py``'s.
 
 SI inside (m, s, rad); degrees only in the arguments and fields named ``_deg``.
 """
@@ -9,7 +11,6 @@ SI inside (m, s, rad); degrees only in the arguments and fields named ``_deg``.
 from __future__ import annotations
 
 import math
-import time
 import warnings
 from dataclasses import dataclass
 from functools import cache
@@ -22,6 +23,7 @@ from ...foundation import earth
 from ...foundation.validation import check_choice
 from ...models.launch import Launch
 from ...models.trajectory import TruncatedFlightWarning
+from .. import effort
 from .firing import (
     BARBADOS_HP,
     BRANCHES,
@@ -42,9 +44,9 @@ __all__ = [
     "eom_evaluations_per_3dof_firing_solution",
     "SolveCount",
     "RaidComparison",
-    "RealTime",
+    "VerifiedSolutionWork",
     "raid_against_3dof_intercept",
-    "verified_firing_solution_time",
+    "verified_firing_solution_operations",
 ]
 
 #: A root the solver returns puts the MKS trajectory this close to the target (m).
@@ -216,63 +218,28 @@ def eom_evaluations_per_3dof_firing_solution(
 @dataclass(frozen=True)
 class RaidComparison:
     """Every MKS intercept of a raid against one converged iterative 3DOF intercept (Chapter 7
-    A's claim), by counts and by wall time measured in one run (best of three each)."""
+    A's claim), by counts."""
 
     targets: int
     intercepts: int
     feasible: int
     roots: int
     mks_trajectories: int
-    mks_time_s: float
     three_dof_rhs: int  # right-hand-side evaluations of the one 3DOF intercept
     three_dof_flights: int
-    three_dof_time_s: float
     three_dof_miss_m: float
     mks_miss_m: float  # the MKS root's own miss in the 3DOF, before its refinement
     alone_rhs: int  # the 3DOF alone from the drag-free conic (barbados_case, descending)
     alone_flights: int
-    alone_time_s: float
 
     @property
     def trajectories_per_intercept(self) -> float:
         return self.mks_trajectories / self.intercepts
 
     @property
-    def mks_ms_per_intercept(self) -> float:
-        return self.mks_time_s / self.intercepts * 1e3
-
-    @property
-    def three_dof_ms(self) -> float:
-        return self.three_dof_time_s * 1e3
-
-    @property
-    def alone_ms(self) -> float:
-        return self.alone_time_s * 1e3
-
-    @property
-    def breakeven_intercepts(self) -> float:
-        """The raid whose MKS intercepts take as long as the one 3DOF intercept."""
-        return self.three_dof_time_s / (self.mks_time_s / self.intercepts)
-
-    @property
-    def alone_breakeven_intercepts(self) -> float:
-        """The raid whose MKS intercepts take as long as the 3DOF alone's firing solution."""
-        return self.alone_time_s / (self.mks_time_s / self.intercepts)
-
-    @property
     def log10_counts(self) -> float:
         """log10 of the 3DOF intercept's right-hand sides over the raid's MKS trajectories."""
         return math.log10(self.three_dof_rhs / self.mks_trajectories)
-
-    @property
-    def log10_time(self) -> float:
-        """log10 of the 3DOF intercept's wall time over the whole MKS raid's."""
-        return math.log10(self.three_dof_time_s / self.mks_time_s)
-
-    @property
-    def time_ratio(self) -> float:
-        """The MKS raid's wall time over the one 3DOF intercept's."""
-        return self.mks_time_s / self.three_dof_time_s
 
 
 @cache
@@ -285,85 +252,77 @@ def raid_against_3dof_intercept(
     from its MKS root to a miss under 1 m (:func:`.verification.verify_with_3dof`; from the
     drag-free conic the 3DOF shooting does not converge on this ascending branch, and a start
     from the MKS makes the 3DOF cheaper, against the claim: so the 3DOF alone from the
-    drag-free conic, in
-    :func:`.firing.barbados_case`, is measured too). Cached: the ledger reads it twice."""
-    targets = raid(gun, count)
-    raid_windows(gun, targets[:1], count=2)  # the kernels loaded, as a fire-control computer has
-    mks_time = math.inf
-    for _ in range(3):
-        start = time.perf_counter()
-        windows = raid_windows(gun, targets, count=times)
-        mks_time = min(mks_time, time.perf_counter() - start)
+    drag-free conic, in :func:`.firing.barbados_case`, is counted too). Cached: the ledger
+    reads it twice."""
+    windows = raid_windows(gun, raid(gun, count), count=times)
     feasible = [item for item in windows[0].intercepts if item.roots]
     if not feasible:
         raise ValueError(f"the first target has no feasible intercept ({windows[0].reason})")
     middle = feasible[len(feasible) // 2]
     assert middle.aim is not None  # a feasible intercept has its point
-    shot_time = math.inf
-    for _ in range(3):
-        start = time.perf_counter()
-        shot = verify_with_3dof(gun, middle.aim, middle.roots[0], tolerance_m=_CONVERGED_MISS_M)
-        shot_time = min(shot_time, time.perf_counter() - start)
+    shot = verify_with_3dof(gun, middle.aim, middle.roots[0], tolerance_m=_CONVERGED_MISS_M)
     if not shot.converged:  # a count of a failed solve would be no measure of the claim
         raise RuntimeError(f"the iterative 3DOF intercept did not converge: {shot.message}")
-    alone_time = math.inf
-    for _ in range(3):
-        start = time.perf_counter()
-        alone = shoot_3dof(*barbados_case())
-        alone_time = min(alone_time, time.perf_counter() - start)
+    alone = shoot_3dof(*barbados_case())
     return RaidComparison(
         count,
         sum(len(window.intercepts) for window in windows),
         sum(int(window.feasible.sum()) for window in windows),
         len(raid_roots(windows)),
         sum(window.mks_solves for window in windows),
-        mks_time,
         shot.rhs_evaluations,
         shot.flights,
-        shot_time,
         shot.miss_m,
         shot.mks_miss_m,
         alone.rhs_evaluations,
         alone.flights,
-        alone_time,
     )
 
 
 @dataclass(frozen=True)
-class RealTime:
-    """One verified firing solution's wall time (best of three): both MKS roots, then the low
-    root refined by the 3DOF to a miss under 1 m."""
+class VerifiedSolutionWork:
+    """The operations of one firing solution as a gun's computer would run it (Chapter 2's
+    "in real time as the gun swings into place"): both MKS roots, then the low root refined by
+    the 3DOF to a miss under 1 m, each counted as Fig 4.7 counts (:mod:`..effort`)."""
 
-    seconds: float
-    mks_s: float
-    three_dof_s: float
+    mks_trajectories: int  # both roots and their search
+    mks_operations_per_trajectory: float  # one three-term MKS evaluation's, a lower bound
+    three_dof_rhs: int
+    three_dof_operations_per_rhs: float  # DOP853's share included
     flights: int
     three_dof_miss_m: float
-    mks_miss_m: float
+    mks_miss_m: float  # the MKS low root's miss in the 3DOF, before the refinement
+
+    @property
+    def mks_operations(self) -> float:
+        return self.mks_trajectories * self.mks_operations_per_trajectory
+
+    @property
+    def three_dof_operations(self) -> float:
+        return self.three_dof_rhs * self.three_dof_operations_per_rhs
+
+    @property
+    def operations(self) -> float:
+        return self.mks_operations + self.three_dof_operations
 
 
-def verified_firing_solution_time(
+def verified_firing_solution_operations(
     gun: Launch | None = None, target: TargetPoint | None = None
-) -> RealTime:
-    """Wall time (s) of one firing solution as a gun's computer would run it, by default for
-    :func:`.firing.barbados_case`: the MKS's both roots, then the 3DOF's refinement of the low
-    root to under 1 m (kernels loaded). Chapter 2: "in real time as the gun swings into
-    place"."""
+) -> VerifiedSolutionWork:
+    """The operations of one verified firing solution, by default for
+    :func:`.firing.barbados_case`: the MKS trajectories of both roots (each counted as one
+    three-term MKS evaluation, Fig 4.7's unit: a lower bound, as a solver's trajectory also
+    finds a crossing and its time), then the 3DOF's refinement of the low root to under 1 m."""
     gun, target = barbados_case() if gun is None or target is None else (gun, target)
-    best = dict(mks=math.inf, refine=math.inf)
-    for _ in range(3):
-        start = time.perf_counter()
-        low = firing_solutions(gun, target).low
-        middle = time.perf_counter()
-        if low is None:
-            raise ValueError("target: the case has no low-angle firing solution")
-        shot = verify_with_3dof(gun, target, low, tolerance_m=_CONVERGED_MISS_M)
-        best["mks"] = min(best["mks"], middle - start)
-        best["refine"] = min(best["refine"], time.perf_counter() - middle)
-    return RealTime(
-        best["mks"] + best["refine"],
-        best["mks"],
-        best["refine"],
+    low = firing_solutions(gun, target).low
+    if low is None:
+        raise ValueError("target: the case has no low-angle firing solution")
+    shot = verify_with_3dof(gun, target, low, tolerance_m=_CONVERGED_MISS_M)
+    return VerifiedSolutionWork(
+        mks_solves_per_firing_solution(gun, target).trajectories,
+        effort.mks_evaluation_operations(),
+        shot.rhs_evaluations,
+        effort.operations_per_3dof_evaluation(),
         shot.flights,
         shot.miss_m,
         shot.mks_miss_m,

@@ -34,6 +34,7 @@ Residuals are measured minus predicted apogee, Appendix E's sign convention.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from functools import cache
 from typing import overload
 
@@ -44,7 +45,7 @@ from scipy.optimize import brentq, minimize_scalar
 from ...engines import eci
 from ...foundation import earth
 from ...foundation.caching import cached_copies
-from ...foundation.validation import check_choice, check_range, real_number
+from ...foundation.validation import check_choice, check_range, probability, real_number
 from ...models.atmosphere import SOUND_SQUARED_PER_KELVIN
 from ...models.drag import ExponentialDragLaw
 from ...models.launch import Launch, Launches
@@ -61,6 +62,7 @@ __all__ = [
     "appendix_rounds",
     "launch_corrections",
     "drag_area_m2",
+    "fitted_site",
     "fit_drag_area_to_errors",
     "beta_column_drag_area",
     "drag_area_table",
@@ -326,6 +328,13 @@ def drag_area_m2(model: str | eci.EciModel = "dissertation") -> float:
     return _drag_area_m2(eci.get_model(model).name)
 
 
+def fitted_site(model: str | eci.EciModel = "dissertation") -> str | None:
+    """The site whose apogees ``model``'s drag area was fitted to, whose residual statistics
+    are then recovered, not predicted: Yuma for the dissertation model (Appendix E's Error
+    column), none for the others (Appendix D's Beta column, not an apogee)."""
+    return "yuma" if eci.get_model(model).name == "dissertation" else None
+
+
 @cache
 def _drag_area_m2(model: str) -> float:
     if model == "dissertation":
@@ -525,6 +534,8 @@ __all__ += [
     "round_count",
     "site_difference_p_value",
     "site_equivalence_p_value",
+    "SiteDifference",
+    "site_mean_difference",
     "bearing_from_east_deg",
     "mach_column_temperature_difference_k",
 ]
@@ -580,6 +591,56 @@ def site_equivalence_p_value(
     above = ttest_ind(barbados + width, yuma, equal_var=False, alternative="greater").pvalue
     below = ttest_ind(barbados - width, yuma, equal_var=False, alternative="less").pvalue
     return float(max(above, below))
+
+
+@dataclass(frozen=True)
+class SiteDifference:
+    """Yuma's mean minus Barbados', over the distinct rounds, with its Welch interval
+    (:func:`site_mean_difference`); in m, m/s, or a share of the two sites' mean."""
+
+    estimate: float
+    low: float
+    high: float
+    confidence: float
+    barbados_mean: float
+    barbados_std: float
+    yuma_mean: float
+    yuma_std: float
+    barbados_rounds: int
+    yuma_rounds: int
+
+
+def site_mean_difference(
+    quantity: str = "residual",
+    *,
+    relative: bool = False,
+    model: str = "dissertation",
+    confidence: float = 0.90,
+) -> SiteDifference:
+    """Yuma's mean minus Barbados' of the apogee residuals under ``model`` (m) or the recovered
+    muzzle speeds (m/s), over the distinct rounds, with its ``confidence`` interval by Welch's t
+    (unequal variances); a share of the two sites' mean if ``relative``. The 90 % interval is
+    the two one-sided tests' at the 5 % level: the sites are shown equivalent within a margin
+    exactly when it lies inside +-margin (:func:`site_equivalence_p_value`), shown to differ by
+    more when it lies outside, and neither when it straddles the margin."""
+    from scipy.stats import ttest_ind
+
+    barbados, yuma = _site_samples(quantity, model)
+    level = probability(confidence, "confidence")
+    interval = ttest_ind(yuma, barbados, equal_var=False).confidence_interval(level)
+    unit = float(abs(np.mean(np.concatenate([barbados, yuma])))) if relative else 1.0
+    return SiteDifference(
+        float(np.mean(yuma) - np.mean(barbados)) / unit,
+        float(interval.low) / unit,
+        float(interval.high) / unit,
+        level,
+        float(np.mean(barbados)),
+        float(np.std(barbados, ddof=1)),
+        float(np.mean(yuma)),
+        float(np.std(yuma, ddof=1)),
+        len(barbados),
+        len(yuma),
+    )
 
 
 def bearing_from_east_deg(site: str | None = None) -> float:

@@ -212,6 +212,12 @@ class Spread:
     runner_up_rms_km: float  # the best RMS misfit of a combination outside the noise
     runner_up: float  # that combination's value
 
+    @property
+    def all_width(self) -> float:
+        """How far the open choices move the quantity when Appendix E does not constrain them:
+        the highest minus the lowest over every combination."""
+        return self.all_high - self.all_low
+
 
 def appendix_e_spread(
     quantity: str, *, magnitude: bool = False, nearest_to: float | None = None

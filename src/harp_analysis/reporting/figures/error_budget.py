@@ -10,6 +10,7 @@ from typing import Any, cast
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
+from matplotlib.artist import Artist
 from matplotlib.colors import LinearSegmentedColormap, SymLogNorm
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
@@ -196,7 +197,11 @@ def _interval_point(ax, y: float, estimate_m: float, low_m: float, high_m: float
 
 
 def draw_harp_confidence(
-    residuals: pd.DataFrame, transfers: pd.DataFrame, text_std_km: dict, text_mean_km: dict
+    residuals: pd.DataFrame,
+    transfers: pd.DataFrame,
+    text_std_km: dict,
+    text_mean_km: dict,
+    recovered_site: str | None = None,
 ):
     """Figure X.5: (a) each site's residual mean (circle) and standard deviation (square) with
     their 95 % intervals (Student's t, Bonett's: confidence.residual_intervals); (b) the
@@ -204,16 +209,32 @@ def draw_harp_confidence(
     the text's densities (triangle) and with each site's density following its Mach-column
     temperature (diamond), with bootstrap intervals. In both panels a marker is open
     where its interval holds zero; the text's values (``text_std_km``, and ``text_mean_km``
-    where the text gives a mean with its sign) are grey crosses. One legend below both."""
+    where the text gives a mean with its sign) are grey crosses. The statistics of
+    ``recovered_site``, whose rounds the model's drag area was fitted to
+    (:func:`harp_analysis.analyses.harp.apogees.fitted_site`), are recovered, not predicted:
+    drawn apart on a hatched band and labelled so. One legend below both."""
     fig, (stats, transfer) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 3.9), layout="constrained")
     text_look = {"markersize": 9, "mew": 1.6, "zorder": 5, **style("text")}
+    band: dict[str, Any] = {"facecolor": "none", "edgecolor": OKABE_ITO["grey"], "lw": 0.0,
+                            "hatch": "////", "alpha": 0.5, "zorder": 0}  # fmt: skip
+    recovered = [site == recovered_site for site, _ in residuals.index]
+    for y, is_recovered in enumerate(recovered):
+        if is_recovered:
+            stats.axhspan(y - 0.5, y + 0.5, **band)
     for y, ((site, statistic), row) in enumerate(residuals.iterrows()):
         _interval_point(stats, y, row.estimate_m, row.low_m, row.high_m,
                         _STATISTIC_MARKERS[statistic])  # fmt: skip
         text = (text_std_km if statistic == "std" else text_mean_km).get(site)
         if text is not None:
             stats.plot(text, y, **text_look)
-    stats.set_yticks(range(len(residuals)), [f"{s.capitalize()}, {t}" for s, t in residuals.index])
+    stats.set_yticks(
+        range(len(residuals)),
+        [
+            f"{s.capitalize()}, {t}" + ("\n(recovered)" if is_recovered else "")
+            for (s, t), is_recovered in zip(residuals.index, recovered)
+        ],
+        fontsize=8,
+    )
     stats.set_xlabel("residual statistic (km)")
     stats.set_title("(a) residuals: measured $-$ MKS", fontsize=9.5)
     for y, row in enumerate(transfers.itertuples()):
@@ -233,7 +254,7 @@ def draw_harp_confidence(
         ax.axvline(0.0, color=OKABE_ITO["grey"], lw=0.8)
         ax.invert_yaxis()
     black: dict[str, Any] = {"color": OKABE_ITO["black"], "linestyle": "none"}
-    handles = [
+    handles: list[Artist] = [
         Line2D([], [], marker="o", label="(a) mean", **black),
         Line2D([], [], marker="s", label="(a) standard deviation", **black),
         Line2D([], [], marker="^", label="(b) the text's surface densities", **black),
@@ -242,7 +263,10 @@ def draw_harp_confidence(
                **black),
         Line2D([], [], label="the text's value", **text_look),
     ]  # fmt: skip
-    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=8)
+    if any(recovered):
+        handles.append(Patch(**band, label="(a) recovered: drag area fitted to these rounds"))
+    fig.legend(handles=handles, loc="outside lower center", ncol=2 if any(recovered) else 3,
+               fontsize=8)  # fmt: skip
     return fig
 
 
