@@ -17,7 +17,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from ..foundation import paths
-from .gallery import render_gallery
+from .gallery import render_gallery, render_readme_headline
 from .ledger import render_claims
 from .registry import get_entry
 
@@ -91,6 +91,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{seconds:6.1f} s  {path.name}")
     for written in (render_gallery(), render_claims()):
         print(f"wrote {written}")
+    if paths.FIGURES_DIR.resolve() == paths.COMMITTED_FIGURES_DIR.resolve():
+        print(f"wrote {render_readme_headline()}")  # the headline counts what was committed
     return 0
 
 

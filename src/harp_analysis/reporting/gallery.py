@@ -18,16 +18,27 @@ from pathlib import Path
 
 from ..foundation import paths
 from .ledger import (
+    VERDICTS,
     ClaimResult,
     MeasuredResult,
     bearing_on,
     claims_by_figure,
+    evaluate_all,
+    load_measurements,
     measurements_by_figure,
     quote_rows,
 )
 from .registry import DRAWN, STATUSES, RegistryEntry, load_registry
 
-__all__ = ["render_gallery", "status_problems", "reason_text", "caption_text"]
+__all__ = [
+    "render_gallery",
+    "status_problems",
+    "reason_text",
+    "caption_text",
+    "readme_headline",
+    "render_readme_headline",
+    "README_MARKERS",
+]
 
 _SHOWN = {
     "reproduced": "reproduced",
@@ -204,3 +215,54 @@ def _drawn(
             "",
         ]
     return lines
+
+
+#: The lines README.md's headline stands between; :func:`render_readme_headline` writes it.
+README_MARKERS = (
+    "<!-- headline: written by `make figures` from the registry and the ledger; do not edit -->",
+    "<!-- /headline -->",
+)
+
+
+def readme_headline() -> str:
+    """What is reproduced, in two paragraphs for README.md: the figures by status and the
+    ledger by verdict, counted from the registry and the ledger as they stand."""
+    entries = load_registry()
+    figures = [e for e in entries if not e.extension]
+    status = {s: sum(e.status == s for e in figures) for s in STATUSES}
+    verdicts = [r.claim.verdict for r in evaluate_all()]
+    verdict = {v: verdicts.count(v) for v in VERDICTS}
+    extensions = len(entries) - len(figures)
+    return (
+        f"**{status['reproduced']} of the dissertation's {len(figures)} figures and tables "
+        "reproduced**: drawn from the package, every number the text states about them "
+        f"recomputed within its tolerance. {status['deviates']} more are drawn but deviate (a "
+        f"number the text states about them does not reproduce; each says which, and why), "
+        f"{status['partial']} are partial (a layer whose data the text lacks), "
+        + (f"{status['pending']} pending, " if status["pending"] else "")
+        + f"and {status['not reproducible']} cannot be drawn from the "
+        "text at all (photographs, sketches, models it does not give); "
+        f"{extensions} more figures are the project's own, beyond the text "
+        "([figures/README.md](figures/README.md)).\n\n"
+        f"**{len(verdicts) - verdict['recovered']} of the text's checkable statements scored** "
+        f"([figures/CLAIMS.md](figures/CLAIMS.md)): {verdict['reproduces']} reproduce, "
+        f"{verdict['close']} are close and {verdict['does not reproduce']} do not reproduce, "
+        f"each with the reason found; {verdict['recovered']} more agree only because the "
+        "project fitted an input to them (recovered), and "
+        f"{len(load_measurements())} extension results measure the project's own work beyond "
+        "the text, unscored."
+    )
+
+
+def render_readme_headline(readme: Path | None = None) -> Path:
+    """Rewrite README.md's headline (between :data:`README_MARKERS`) with
+    :func:`readme_headline`; the rest of the file is left as it is."""
+    readme = Path(readme) if readme else paths.ROOT / "README.md"
+    text = readme.read_text()
+    start, end = README_MARKERS
+    if start not in text or end not in text:
+        raise ValueError(f"{readme}: no headline markers ({start} ... {end})")
+    before, rest = text.split(start, 1)
+    _, after = rest.split(end, 1)
+    updated = f"{before}{start}\n{readme_headline()}\n{end}{after}"
+    return paths.write_atomically(readme, lambda path: path.write_text(updated))
