@@ -2,6 +2,7 @@
 Earth, the 3DOF itself, and bad input."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -21,6 +22,7 @@ from harp_analysis.foundation import earth
 from harp_analysis.models.launch import Launch
 from harp_analysis.models.projectiles import HP
 from harp_analysis.models.sites import BARBADOS
+from harp_analysis.models.trajectory import EndAltitudeNotCrossedWarning
 
 SPEED = HP.launch_speed_m_s
 VACUUM = Launch(HP, SPEED, 45.0, atmosphere="vacuum")
@@ -206,6 +208,23 @@ def test_the_batched_refinement_lands_every_root_and_gives_the_one_by_one_answer
         alone = verify_with_3dof(ROTATING, target, root, tolerance_m=1.0)
         assert alone.elevation_deg == check.elevation_deg
         assert alone.flights == check.flights
+
+
+def test_a_solution_the_3dof_falls_short_of_is_raised_quietly_onto_the_target():
+    """80 km out and 20 km up, the MKS's low root tops out above the target and the 3DOF's
+    (19.9 km) below it: that shot never comes down through 20 km, a miss the refinement
+    expects (no warning of it reaches the caller), and raising the elevation lands it."""
+    target = _destination(ROTATING, 109.0, 80e3, altitude_m=20e3)
+    low = firing_solutions(ROTATING, target).low
+    with pytest.warns(EndAltitudeNotCrossedWarning, match=r"its apogee: 19\.\d+ km"):
+        threedof.fly_3dof(
+            ROTATING.but(elevation_deg=low.elevation_deg, bearing_deg=low.bearing_deg),
+            end_altitude_m=20e3,
+        )
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", EndAltitudeNotCrossedWarning)
+        check = verify_with_3dof(ROTATING, target, low)
+    assert check.mks_miss_m == math.inf and check.converged and check.elevation_change_deg > 0
 
 
 def test_fire_time_is_the_arrival_time_less_the_time_of_flight():

@@ -470,3 +470,84 @@ def test_a_flight_can_end_where_it_crosses_an_altitude(rising):
     height = half.altitude_m if rising else -half.altitude_m  # increasing, for np.interp
     crossing = np.interp(30e3 if rising else -30e3, height, half.time_s)
     assert flights.time_of_flight_s[0] == pytest.approx(crossing, abs=1e-3)
+
+
+@pytest.mark.parametrize("rising", [False, True])
+def test_an_end_altitude_the_flight_never_crosses_ends_it_at_the_ground(rising):
+    """Asked to end 500 km up, far above its apogee, a flight never crosses that altitude: it
+    ends where it would anyway, back at the site's altitude (the same range and time as the
+    plain flight), not underground at max_time_s, and warns, quoting its apogee."""
+    plain = threedof.fly_3dof(BASELINE_45)
+    way = "climbs" if rising else "comes down"
+    with pytest.warns(trajectory.EndAltitudeNotCrossedWarning) as caught:
+        flights = threedof.fly_3dof(BASELINE_45, end_altitude_m=500e3, rising=rising)
+    (message,) = [str(w.message) for w in caught]
+    apogee_km = plain.apogee_altitude_m[0] / 1e3
+    assert f"never {way} through end_altitude_m = 500 km (its apogee: {apogee_km:.4g} km)" in (
+        message
+    )
+    assert not flights.impact[0] and flights.stop_reason[0] == "ground_before_end"
+    assert np.linalg.norm(flights.end_position_m[:, 0]) == pytest.approx(earth.RADIUS_M, abs=1e-3)
+    assert flights.range_m[0] == pytest.approx(plain.range_m[0], abs=1e-3)
+    assert flights.time_of_flight_s[0] == pytest.approx(plain.time_of_flight_s[0], abs=1e-6)
+    assert flights.apogee_altitude_m[0] == pytest.approx(plain.apogee_altitude_m[0], abs=1e-3)
+
+
+@pytest.mark.parametrize("rising", [False, True])
+def test_a_grazing_shot_asked_to_end_above_it_lands_where_it_would(rising):
+    """A shot 0.01 deg above the horizon rises millimetres and falls back within its first
+    step: the ground must still be seen, not crossed twice unseen."""
+    launch = Launch(BASELINE, 2157.0, 0.01, atmosphere="vacuum")
+    conic = kepler.ballistic_conic(2157.0, np.radians(0.01))
+    with pytest.warns(trajectory.EndAltitudeNotCrossedWarning):
+        flights = threedof.fly_3dof(launch, end_altitude_m=1e3, rising=rising)
+    assert flights.stop_reason[0] == "ground_before_end"
+    assert flights.range_m[0] == pytest.approx(conic.ground_range_m, rel=1e-3, abs=0.03)
+
+
+def test_a_batch_names_the_launches_that_never_cross_their_end_altitude():
+    """Per launch: the 20 deg shot (apogee about 20 km) never comes down through 50 km, the
+    70 deg one never climbs through 500 km; the others end at their crossings as if flown
+    alone, and the warning counts and names the two."""
+    elevations = [20.0, 45.0, 70.0, 85.0]
+    ends = np.array([50e3, 50e3, 500e3, 150e3])
+    rising = np.array([False, False, True, True])
+    launches = [BASELINE_45.but(elevation_deg=e) for e in elevations]
+    with pytest.warns(trajectory.EndAltitudeNotCrossedWarning) as caught:
+        flights = threedof.fly_3dof(launches, end_altitude_m=ends, rising=rising)
+    (message,) = [str(w.message) for w in caught]
+    assert message.startswith("2 of 4 3DOF flights never cross their end altitude (launches 0, 2)")
+    assert "launch 0 never comes down through end_altitude_m = 50 km" in message
+    assert "launch 2 never climbs through end_altitude_m = 500 km" in message
+    assert flights.stop_reason.tolist() == ["ground_before_end", "impact"] * 2
+    for i in (1, 3):
+        alone = threedof.fly_3dof(launches[i], end_altitude_m=ends[i], rising=rising[i])
+        assert flights.range_m[i] == alone.range_m[0]
+        assert flights.time_of_flight_s[i] == alone.time_of_flight_s[0]
+    radii = np.linalg.norm(flights.end_position_m[:, [0, 2]], axis=0)
+    assert radii == pytest.approx(earth.RADIUS_M, abs=1e-3)
+
+
+def test_an_end_altitude_below_the_site_is_reached_below_it():
+    """From a gun 1 km up, a target at sea level lies below the site: the flight comes down
+    through the site's altitude and on to the target's (the ground there is not the site's),
+    while a flight asked to rise through sea level never can and ends at the site's altitude."""
+    raised = BASELINE_45.but(site_altitude_m=1e3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", trajectory.EndAltitudeNotCrossedWarning)
+        low = threedof.fly_3dof(raised, end_altitude_m=0.0)
+    site = threedof.fly_3dof(raised)
+    assert low.impact[0] and low.stop_reason[0] == "impact"
+    assert np.linalg.norm(low.end_position_m[:, 0]) == pytest.approx(earth.RADIUS_M, abs=1e-3)
+    assert low.range_m[0] > site.range_m[0] and low.time_of_flight_s[0] > site.time_of_flight_s[0]
+    with pytest.warns(trajectory.EndAltitudeNotCrossedWarning, match="site's altitude, 1000 m"):
+        up = threedof.fly_3dof(raised, end_altitude_m=0.0, rising=True)
+    assert up.stop_reason[0] == "ground_before_end"
+    assert up.range_m[0] == pytest.approx(site.range_m[0], abs=1e-3)
+
+
+def test_an_end_altitude_below_any_ground_is_refused_by_name():
+    with pytest.raises(ValueError, match=r"end_altitude_m must lie in \[-500, inf\] m"):
+        threedof.fly_3dof(BASELINE_45, end_altitude_m=-150e3)
+    with pytest.raises(ValueError, match="end_altitude_m"):
+        threedof.fly_3dof([BASELINE_45, BASELINE_45], end_altitude_m=[0.0, -1e3])

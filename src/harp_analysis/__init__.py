@@ -59,6 +59,7 @@ _API = {
     # what the models warn of
     "ModelValidityWarning": "foundation.validation",
     "TruncatedFlightWarning": "models.trajectory",
+    "EndAltitudeNotCrossedWarning": "models.trajectory",
 }
 
 __all__ = ["__version__", *_API]
@@ -84,7 +85,7 @@ if TYPE_CHECKING:  # for type checkers and editors; at run time each name is imp
     )
     from .models.projectiles import BASELINE, HP, LP, Projectile, get_projectile
     from .models.sites import BARBADOS, YUMA, get_site
-    from .models.trajectory import TruncatedFlightWarning
+    from .models.trajectory import EndAltitudeNotCrossedWarning, TruncatedFlightWarning
 
 
 def __getattr__(name: str) -> Any:

@@ -41,9 +41,11 @@ from ..foundation.counting import Counted
 from ..foundation.validation import check_range, finite_array, finite_scalar, positive_scalar
 from ..models.atmosphere import SOUND_SQUARED_PER_KELVIN, air, day_air, get_atmosphere
 from ..models.drag import drag_coefficient
-from ..models.launch import Launch, Launches
+from ..models.launch import BOUNDS, Launch, Launches
 from ..models.trajectory import (
     BASE_COLUMNS,
+    STOP_REASONS,
+    EndAltitudeNotCrossedWarning,
     TruncatedFlightWarning,
     climb_angle,
     cross,
@@ -164,18 +166,52 @@ def _grow(array, size):
     return grown
 
 
+#: How a flight ends (:func:`_integrate`), as the index of its reason in
+#: :data:`.trajectory.STOP_REASONS`: at its end level, cut off by ``t_max_s``, or at the ground
+#: without crossing its end level.
+_AT_END, _MAX_TIME, _GROUND = (
+    STOP_REASONS.index(reason) for reason in ("impact", "max_time", "ground_before_end")
+)
+
+
+@jit(inline=True)
+def _crosses(level, sign, y, y_new):
+    """Whether the step from ``y`` to ``y_new`` crosses ``level`` falling (``sign`` +1) or
+    rising (-1), from on the level (within its rounding) included."""
+    above, after = event_value(ALTITUDE, level, y), event_value(ALTITUDE, level, y_new)
+    return sign * above > -_ON_LEVEL_M and 0 >= sign * after
+
+
+@jit(inline=True)
+def _apogee_cut(level, t, hi, y, y_new, a, a_new, work):
+    """The step (s) up to the apogee where the step from ``y`` starts on or below ``level``,
+    turns over and ends below it, else 0: a flight that starts on its level and turns over
+    within the step (a shot a hundredth of a degree above the horizon rises millimetres) would
+    cross the level twice unseen; cut at the apogee, the fall from it is a crossing."""
+    above, after = event_value(ALTITUDE, level, y), event_value(ALTITUDE, level, y_new)
+    turns = event_value(RADIAL_VELOCITY, 0.0, y) > 0 >= event_value(RADIAL_VELOCITY, 0.0, y_new)
+    if above < _ON_LEVEL_M and after < 0 and turns:
+        return hi * crossing_fraction(RADIAL_VELOCITY, 0.0, t, t + hi, y, y_new, a, a_new, work)
+    return 0.0
+
+
 @jit(inline=True)
 def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
-    """One flight from ``y0`` until it falls back to the site or reaches ``t_max_s``;
-    ``numerics`` is ``(end_m, end_sign, breakpoints_m, t_max_s, rtol, floor, max_step_s)``: the
-    altitude that ends the flight, falling through it (``end_sign`` +1) or rising (-1), the
+    """One flight from ``y0`` until it crosses its end level, falls back to the ground without
+    crossing it, or reaches ``t_max_s``; ``numerics`` is ``(end_m, end_sign, ground_m,
+    breakpoints_m, t_max_s, rtol, floor, max_step_s)``: the altitude that ends the flight,
+    falling through it (``end_sign`` +1) or rising (-1), the ground's (the site's), the
     atmosphere's breakpoints and the integrator's settings (:func:`_fly`).
 
-    Returns the times of the apogee and impact (NaN if not reached), the state (6,) at each (the
-    last state for an impact not reached), the right-hand-side evaluations and accepted steps,
+    Returns the time of the apogee (NaN if not reached) and of the end (NaN if cut off), the
+    state (6,) at each (the last state for a flight cut off), how it ended (:data:`_AT_END`,
+    :data:`_MAX_TIME` or :data:`_GROUND`), the right-hand-side evaluations and accepted steps,
     and, if ``record``, every accepted step: times (k,) and states with accelerations (9, k).
     """
-    end_m, end_sign, breakpoints_m, t_max_s, rtol, floor, max_step_s = numerics
+    end_m, end_sign, ground_m, breakpoints_m, t_max_s, rtol, floor, max_step_s = numerics
+    # a flight that never crosses its end level (above its apogee, or one it cannot rise
+    # through) stops at the ground; one falling to a level at or below the ground gets there
+    grounded = end_sign < 0 or ground_m < end_m
     k = np.empty((STAGES + 1, 6))
     y, y_new, work = y0.copy(), np.empty(6), np.empty(6)
     start = np.empty((2, 6))  # y' at the start and a trial step later
@@ -196,7 +232,7 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
         times[0] = 0.0
         steps[:6, 0], steps[6:, 0] = y, a
     t, count = 0.0, 0
-    apogee_t, impact_t = math.nan, math.nan
+    apogee_t, stop_t, outcome = math.nan, math.nan, _MAX_TIME
     apogee, end = np.empty(6), np.empty(6)
     c = TABLEAU[2]
     failed = False
@@ -226,21 +262,12 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
                 if fraction * hi > MIN_CUT_S and fraction < 1 - STRADDLE:
                     accept = False
                     h = hi * fraction * (1 - 2 * STRADDLE)
-        if math.isnan(impact_t) and end_sign > 0:
-            # A flight that starts on its end level and turns over within the step (a shot a
-            # hundredth of a degree above the horizon rises millimetres) would cross the level
-            # twice unseen: the step is cut at the apogee, from which the fall is a crossing.
-            above, after = event_value(ALTITUDE, end_m, y), event_value(ALTITUDE, end_m, y_new)
-            turns = (
-                event_value(RADIAL_VELOCITY, 0.0, y) > 0 >= event_value(RADIAL_VELOCITY, 0.0, y_new)
-            )
-            if above < _ON_LEVEL_M and after < 0 and turns:
-                fraction = crossing_fraction(
-                    RADIAL_VELOCITY, 0.0, t, t + hi, y, y_new, a, a_new, work
-                )
-                if fraction * hi > MIN_CUT_S:
+        if math.isnan(stop_t):  # the levels a flight falls through to its end
+            for level, falls in ((end_m, end_sign > 0), (ground_m, grounded)):
+                cut = _apogee_cut(level, t, hi, y, y_new, a, a_new, work) if falls else 0.0
+                if cut > MIN_CUT_S:
                     accept = False
-                    h = hi * fraction
+                    h = cut
         if not accept:
             continue
         t_new = t + hi
@@ -253,16 +280,20 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
                 )
                 apogee_t = t + fraction * (t_new - t)
                 hermite(t, t_new, y, y_new, a, a_new, apogee_t, apogee)
-        if math.isnan(impact_t) and t_new > 1e-6:
-            above, after = event_value(ALTITUDE, end_m, y), event_value(ALTITUDE, end_m, y_new)
-            if end_sign * above > -_ON_LEVEL_M and 0 >= end_sign * after:
+        if math.isnan(stop_t) and t_new > 1e-6:
+            level, sign = end_m, end_sign
+            if _crosses(end_m, end_sign, y, y_new):
+                outcome = _AT_END
+            elif grounded and _crosses(ground_m, 1.0, y, y_new):
+                level, sign, outcome = ground_m, 1.0, _GROUND
+            if outcome != _MAX_TIME:
                 fraction = (  # from on the level (a rise below the rounding) it lands at once
-                    crossing_fraction(ALTITUDE, end_m, t, t_new, y, y_new, a, a_new, work)
-                    if end_sign * above > 0
+                    crossing_fraction(ALTITUDE, level, t, t_new, y, y_new, a, a_new, work)
+                    if sign * event_value(ALTITUDE, level, y) > 0
                     else 0.0
                 )
-                impact_t = t + fraction * (t_new - t)
-                hermite(t, t_new, y, y_new, a, a_new, impact_t, end)
+                stop_t = t + fraction * (t_new - t)
+                hermite(t, t_new, y, y_new, a, a_new, stop_t, end)
                 stopped = True
         t = t_new
         for i in range(6):
@@ -277,13 +308,14 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
             steps[:6, count], steps[6:, count] = y, a
         if stopped or t >= t_max_s:
             break
-    if math.isnan(impact_t):
+    if math.isnan(stop_t):
         end[:] = y
     return (
         apogee_t,
         apogee,
-        impact_t,
+        stop_t,
         end,
+        outcome,
         evaluations,
         count,
         failed,
@@ -295,26 +327,28 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
 @jit(inline=True)
 def _fly_all(y0, weather, air_code, drag_code, dynamics, numerics, record):
     """:func:`_integrate` for every launch (columns of ``y0`` and ``weather``): the times of the
-    apogee and impact (2, n), the states there (2, 6, n), the evaluations, steps and whether the
-    integration failed (3, n), and the last launch's record of its steps (when ``record``).
-    ``numerics`` is :func:`_integrate`'s with arrays (n,) or (1,) of the end altitudes and
-    directions."""
+    apogee and end (2, n), the states there (2, 6, n), the evaluations, steps, whether the
+    integration failed and how the flight ended (4, n), and the last launch's record of its
+    steps (when ``record``). ``numerics`` is :func:`_integrate`'s with arrays (n,) or (1,) of
+    the end altitudes and directions."""
     n = y0.shape[1]
     event_times = np.empty((2, n))
     states = np.empty((2, 6, n))
-    counts = np.empty((3, n), np.int64)
+    counts = np.empty((4, n), np.int64)
     step_times, steps = np.empty(0), np.empty((9, 0))
-    ends, signs, breakpoints_m, t_max_s, rtol, floor, max_step_s = numerics
+    ends, signs, ground_m, breakpoints_m, t_max_s, rtol, floor, max_step_s = numerics
     for i in range(n):
         end, sign = ends[min(i, ends.size - 1)], signs[min(i, signs.size - 1)]
-        own = (end, sign, breakpoints_m, t_max_s, rtol, floor, max_step_s)
+        own = (end, sign, ground_m, breakpoints_m, t_max_s, rtol, floor, max_step_s)
         flight = _integrate(
             y0[:, i].copy(), weather[:, i].copy(), air_code, drag_code, dynamics, own, record
         )
-        apogee_t, apogee, impact_t, end, evaluations, count, failed, step_times, steps = flight
-        event_times[0, i], event_times[1, i] = apogee_t, impact_t
+        apogee_t, apogee, stop_t, end, outcome, evaluations, count, failed, step_times, steps = (
+            flight
+        )
+        event_times[0, i], event_times[1, i] = apogee_t, stop_t
         states[0, :, i], states[1, :, i] = apogee, end
-        counts[0, i], counts[1, i], counts[2, i] = evaluations, count, failed
+        counts[0, i], counts[1, i], counts[2, i], counts[3, i] = evaluations, count, failed, outcome
     return event_times, states, counts, step_times, steps
 
 
@@ -405,22 +439,23 @@ def _earth_fixed(x, y, z, omega, t):
 
 
 @jit
-def _summarise(event_times, states, axes, omega, max_time_s):
+def _summarise(event_times, states, outcomes, axes, omega, max_time_s):
     """What :class:`Flights` holds of each launch, rows of (14, n): the apogee's time, altitude
-    and ground range, the end's time, ground and cross range, inertial speed, 1 if it is the
-    impact (else 0), Earth-fixed position (3) and velocity relative to the Earth (3)."""
+    and ground range, the end's time, ground and cross range, inertial speed, how it ended
+    (``outcomes``: :data:`_AT_END`, :data:`_MAX_TIME` or :data:`_GROUND`), Earth-fixed
+    position (3) and velocity relative to the Earth (3)."""
     n = event_times.shape[1]
     out = np.empty((14, n))
     for i in range(n):
         up = (axes[0, 0, i], axes[0, 1, i], axes[0, 2, i])
         downrange = (axes[1, 0, i], axes[1, 1, i], axes[1, 2, i])
-        apogee_t, impact_t = event_times[0, i], event_times[1, i]
+        apogee_t, stop_t = event_times[0, i], event_times[1, i]
         out[0, i], out[1, i], out[2, i] = apogee_t, math.nan, math.nan
         if not math.isnan(apogee_t):
             top = _earth_fixed(states[0, 0, i], states[0, 1, i], states[0, 2, i], omega, apogee_t)
             out[1, i] = np.sqrt(dot(top, top)) - earth.RADIUS_M
             out[2, i] = surface_range(top, up, downrange)[0]
-        end_t = max_time_s if math.isnan(impact_t) else impact_t
+        end_t = max_time_s if math.isnan(stop_t) else stop_t
         r = (states[1, 0, i], states[1, 1, i], states[1, 2, i])
         v = (states[1, 3, i], states[1, 4, i], states[1, 5, i])
         position = _earth_fixed(r[0], r[1], r[2], omega, end_t)
@@ -428,7 +463,7 @@ def _summarise(event_times, states, axes, omega, max_time_s):
         out[3, i] = end_t
         out[4, i], out[5, i] = surface_range(position, up, downrange)
         out[6, i] = np.sqrt(dot(v, v))
-        out[7, i] = 0.0 if math.isnan(impact_t) else 1.0
+        out[7, i] = outcomes[i]
         for k in range(3):
             out[8 + k, i], out[11 + k, i] = position[k], velocity[k]
     return out
@@ -448,7 +483,7 @@ def _kernels(air_code: int, drag_code: int):
         event_times, states, counts, step_times, steps = _fly_all(
             y0, weather, air_code, drag_code, dynamics, numerics, record
         )
-        summary = _summarise(event_times, states, axes, omega, numerics[3])
+        summary = _summarise(event_times, states, counts[3], axes, omega, numerics[4])
         return summary, counts, weather, axes, step_times, steps
 
     def rows(times_s, step_times, steps, weather, axes, dynamics):
@@ -524,7 +559,8 @@ def _shared(projectile, atmosphere: str, omega: float) -> tuple:
 
 class Flights(NamedTuple):
     """Apogee and end of every launch of a batch (:func:`fly_3dof`), arrays (n,) in SI units;
-    ``end`` is the impact, or the last time reached where ``impact`` is False."""
+    ``end`` is the impact (where the flight crossed its end altitude), or where it stopped
+    without: ``stop_reason`` says why (:data:`.trajectory.STOP_REASONS`)."""
 
     apogee_time_s: np.ndarray
     apogee_altitude_m: np.ndarray
@@ -534,6 +570,7 @@ class Flights(NamedTuple):
     cross_range_m: np.ndarray
     impact_speed_m_s: np.ndarray
     impact: np.ndarray
+    stop_reason: np.ndarray  # "impact", "max_time" or "ground_before_end"
     steps: np.ndarray
     rhs_evaluations: np.ndarray
     end_position_m: np.ndarray  # (3, n) Earth-fixed (the inertial frame at t = 0)
@@ -542,11 +579,13 @@ class Flights(NamedTuple):
 
 def _fly(batch: _Batch, max_time_s: float, rtol: float, record: bool, end=None, rising=False):
     """The compiled flights of ``batch`` to the site's altitude, or to ``end`` (m) rising where
-    ``rising`` (one of each, or arrays (n,)); FloatingPointError if one cannot be integrated."""
+    ``rising`` (one of each, or arrays (n,)), each stopped at the ground if it never gets
+    there; FloatingPointError if one cannot be integrated."""
     fly, _ = _kernels(*batch.codes)
     numerics = (
         np.array(batch.site_m if end is None else end, dtype=float, ndmin=1),
         np.where(rising, -1.0, 1.0).astype(float).reshape(-1),
+        float(batch.site_m),  # the ground
         batch.breakpoints_m,
         max_time_s,
         rtol,
@@ -579,7 +618,9 @@ def fly_3dof(
     A flight ends where it falls back to the site's altitude, or to ``end_altitude_m`` (m) if
     given, or rises through it if ``rising`` (a target above the gun on the way up); each is
     one for every launch or an array (n,), one per launch. ``impact`` says whether it got
-    there before ``max_time_s``.
+    there before ``max_time_s``, and ``stop_reason`` why not: cut off by ``max_time_s``, or it
+    never crossed ``end_altitude_m`` (one above its apogee) and ended where it fell back to
+    the ground, which warns (:class:`~.trajectory.EndAltitudeNotCrossedWarning`).
 
     Parameters
     ----------
@@ -591,7 +632,7 @@ def fly_3dof(
         The longest flight (s).
     end_altitude_m : float or numpy.ndarray, optional
         Where a flight ends (m), for every launch or one each (n,); the site's altitude by
-        default.
+        default. Not below the lowest site, -500 m.
     rising : bool or numpy.ndarray
         For every launch or one each (n,): end where the flight rises through
         ``end_altitude_m``, not where it falls back.
@@ -604,17 +645,27 @@ def fly_3dof(
     rtol, max_time_s = _numerics(rtol, max_time_s)
     batch = _batch(launches)
     count = batch.columns.shape[1]
-    if end_altitude_m is not None:
-        end_altitude_m = _per_launch(finite_array(end_altitude_m, "end_altitude_m"), count)
+    if end_altitude_m is None:
+        ends = np.array([batch.site_m])
+    else:
+        ends = finite_array(end_altitude_m, "end_altitude_m")
+        # no ground lies below the lowest site
+        check_range(ends, "end_altitude_m", low=BOUNDS["site_altitude_m"].low, unit="m")
+        ends = _per_launch(ends, count)
     directions = np.asarray(rising)
     if directions.dtype != bool:
         raise TypeError(f"rising must be True, False or an array of them; got {rising!r:.80}")
     rising = _per_launch(directions, count)
-    summary, counts, *_ = _fly(
-        batch, max_time_s, rtol, record=False, end=end_altitude_m, rising=rising
-    )
-    impact = summary[7] == 1.0
+    summary, counts, *_ = _fly(batch, max_time_s, rtol, record=False, end=ends, rising=rising)
+    outcomes = summary[7].astype(int)
     apogee_t, apogee, apogee_ground, end_t, ground, cross_range, speed = summary[:7]
+    grounded = np.flatnonzero(outcomes == _GROUND)
+    if grounded.size:
+        warnings.warn(
+            _not_crossed(grounded, count, ends, rising, apogee, batch.site_m),
+            EndAltitudeNotCrossedWarning,
+            stacklevel=2,
+        )
     return Flights(
         apogee_t,
         apogee,
@@ -623,11 +674,44 @@ def fly_3dof(
         ground,
         cross_range,
         speed,
-        impact,
+        outcomes == _AT_END,
+        np.asarray(STOP_REASONS)[outcomes],
         counts[1],
         counts[0],
         summary[8:11],
         summary[11:14],
+    )
+
+
+#: Launches a warning of flights that never crossed their end altitudes describes one by one.
+_DESCRIBED = 3
+
+
+def _not_crossed(which, count, ends, rising, apogees, site_m) -> str:
+    """The warning for the launches ``which`` (of ``count``) that fell back to the ground
+    without crossing their end altitudes ``ends`` the way ``rising`` says (one or one per
+    launch each); ``apogees`` (n,), m."""
+
+    def missed(i):
+        way = "climbs" if rising[min(i, rising.size - 1)] else "comes down"
+        return (
+            f"never {way} through end_altitude_m = {ends[min(i, ends.size - 1)] / 1e3:g} km "
+            f"(its apogee: {apogees[i] / 1e3:.4g} km)"
+        )
+
+    outcome = (
+        f"ends where it falls back to the ground (the site's altitude, {site_m:g} m), with "
+        "impact False and stop_reason 'ground_before_end'"
+    )
+    if count == 1:
+        return f"the 3DOF flight {missed(0)}: it {outcome}"
+    listed = ", ".join(str(i) for i in which[:10]) + (
+        f" and {which.size - 10} more" if which.size > 10 else ""
+    )
+    described = "; ".join(f"launch {i} {missed(i)}" for i in which[:_DESCRIBED])
+    return (
+        f"{which.size} of {count} 3DOF flights never cross their end altitude (launches "
+        f"{listed}): {described}{'; ...' if which.size > _DESCRIBED else ''}. Each {outcome}"
     )
 
 
@@ -716,7 +800,7 @@ def simulate_3dof(
     rtol, max_time_s = _numerics(rtol, max_time_s)
     batch = _batch(launch)
     summary, counts, weather, axes, step_times, steps = _fly(batch, max_time_s, rtol, record=True)
-    impact = summary[7, 0] == 1.0
+    impact = summary[7, 0] == _AT_END  # the site's altitude: every flight not cut off gets there
     end_t = summary[3, 0] if impact else step_times[-1]
     times = output_times(end_t, step)
     rows = _kernels(*batch.codes)[1](
@@ -755,11 +839,6 @@ def simulate_3dof_batch(
             },
             **{name: getattr(flights, name) for name in Flights._fields[:-2]},
         }
-    )
-    summary.insert(
-        summary.columns.get_loc("impact") + 1,
-        "stop_reason",
-        np.where(flights.impact, "impact", "max_time"),
     )
     missed = int((~flights.impact).sum())
     if missed:

@@ -43,6 +43,7 @@ __all__ = [
     "METADATA_KEYS",
     "STOP_REASONS",
     "TruncatedFlightWarning",
+    "EndAltitudeNotCrossedWarning",
     "describe",
     "launch_frame",
     "rotate_about_axis",
@@ -162,12 +163,19 @@ METADATA_KEYS = (
     "rhs_evaluations",
     "steps",
 )
-#: Why a flight ended: it reached the ground, or ``max_time_s`` came first.
-STOP_REASONS = ("impact", "max_time")
+#: Why a flight ended: it reached the ground (or the altitude it was to end at), ``max_time_s``
+#: came first, or it fell back to the ground without crossing the altitude it was to end at.
+STOP_REASONS = ("impact", "max_time", "ground_before_end")
 
 
 class TruncatedFlightWarning(ModelValidityWarning):
     """A flight was cut off by ``max_time_s`` before it returned to the ground."""
+
+
+class EndAltitudeNotCrossedWarning(ModelValidityWarning):
+    """A flight asked to end at an altitude never crossed it the way it was to (falling
+    through one above its apogee, or rising through one it never climbs through) and ended
+    where it fell back to the ground instead (``stop_reason = "ground_before_end"``)."""
 
 
 def describe(

@@ -22,7 +22,7 @@ from ...engines import threedof
 from ...foundation import earth
 from ...foundation.validation import check_choice
 from ...models.launch import Launch
-from ...models.trajectory import TruncatedFlightWarning
+from ...models.trajectory import EndAltitudeNotCrossedWarning
 from .. import effort
 from .firing import (
     BARBADOS_HP,
@@ -90,7 +90,7 @@ class _Shooting:
         """From ``start`` (elevation, bearing; rad): the miss there, scipy's fit and the flight
         at its end; ``step_bound`` is hybr's ``factor`` (small for a start far from the root)."""
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore", TruncatedFlightWarning)  # a cut-off flight misses
+            warnings.simplefilter("ignore", EndAltitudeNotCrossedWarning)  # a short shot misses
             first = float(np.hypot(*self.miss(start)))
             # a step of 1e-7 rad moves the end point by centimetres, far above the 3DOF's noise
             fit = optimize.root(

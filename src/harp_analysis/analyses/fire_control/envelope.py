@@ -29,7 +29,7 @@ from ...engines import threedof
 from ...foundation.sweeps import sweep
 from ...foundation.validation import check_choice, check_range, finite_array, real_number
 from ...models.launch import Launch, Launches
-from ...models.trajectory import TruncatedFlightWarning
+from ...models.trajectory import EndAltitudeNotCrossedWarning
 from .firing import destination, firing_solutions
 
 __all__ = ["ROOTS", "MAP_COLUMNS", "miss_map"]
@@ -64,7 +64,7 @@ def _three_dof_misses(gun: Launch, targets, solutions, rtol: float) -> np.ndarra
         bearing_deg=np.array([s.bearing_deg for s in solutions]),
     )
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", TruncatedFlightWarning)  # reported as NaN below
+        warnings.simplefilter("ignore", EndAltitudeNotCrossedWarning)  # NaN below
         flight = threedof.fly_3dof(
             laid,
             rtol=rtol,

@@ -22,7 +22,7 @@ from ...engines import threedof
 from ...foundation.sweeps import client_shares, sweep
 from ...foundation.validation import check_range, real_number
 from ...models.launch import Launch, Launches
-from ...models.trajectory import TruncatedFlightWarning
+from ...models.trajectory import EndAltitudeNotCrossedWarning
 from .firing import FiringSolution, TargetPoint, check_gun, check_targets, east_north
 
 __all__ = ["Verification", "verify_with_3dof", "LANDED_M"]
@@ -74,7 +74,7 @@ class _Batch3dof:
         where the shot never reaches its target's altitude, and the times of flight (k,)."""
         elevation = np.clip(np.degrees(x[:, 0]), 1e-9, 90.0)
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore", TruncatedFlightWarning)  # a cut-off flight misses
+            warnings.simplefilter("ignore", EndAltitudeNotCrossedWarning)  # a short shot misses
             flight = threedof.fly_3dof(
                 self.launches.but(elevation_deg=elevation, bearing_deg=np.degrees(x[:, 1]) % 360),
                 rtol=self.rtol,
