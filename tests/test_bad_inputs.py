@@ -175,6 +175,10 @@ PROBES: dict[str, tuple[str, Err | Warned | Ok]] = {
         Ok("r.stop_reason[0] == 'ground_before_end' and not r.impact[0] and abs(np.linalg.norm(r.end_position_m[:, 0]) - 6378e3) < 1e-3 and r.time_of_flight_s[0] < 400"),
     ),
     "3dof end never risen through": ("threedof.fly_3dof(B45, end_altitude_m=500e3, rising=True)", Warned("never climbs through end_altitude_m = 500 km")),
+    "3dof turn at a step's end": (  # the envelope's map at 270 deg, 140 km, 65 km hung here
+        "threedof.fly_3dof(GUN.but(elevation_deg=45.55003258142979, bearing_deg=269.90248245939864), end_altitude_m=65e3)",
+        Warned(r"never comes down through end_altitude_m = 65 km \(its apogee: 62.11 km\)"),
+    ),
     "3dof batch end above apogees": ("threedof.fly_3dof(Launches(BASELINE, 2157.0, [20.0, 45.0, 10.0]), end_altitude_m=[50e3, 50e3, 50e3])", Warned(r"2 of 3 3DOF flights never cross their end altitude \(launches 0, 2\)")),
     "3dof output step zero": ("threedof.simulate_3dof(B45, output_step_s=0.0)", Err("output_step_s")),
     "3dof output step tiny": ("threedof.simulate_3dof(B45, output_step_s=1e-9)", Err("output_step_s")),

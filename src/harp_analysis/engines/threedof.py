@@ -187,11 +187,14 @@ def _apogee_cut(level, t, hi, y, y_new, a, a_new, work):
     """The step (s) up to the apogee where the step from ``y`` starts on or below ``level``,
     turns over and ends below it, else 0: a flight that starts on its level and turns over
     within the step (a shot a hundredth of a degree above the horizon rises millimetres) would
-    cross the level twice unseen; cut at the apogee, the fall from it is a crossing."""
+    cross the level twice unseen; cut at the apogee, the fall from it is a crossing. A turn at
+    the step's very end needs no cut: cut there, the same step would be tried again for ever."""
     above, after = event_value(ALTITUDE, level, y), event_value(ALTITUDE, level, y_new)
     turns = event_value(RADIAL_VELOCITY, 0.0, y) > 0 >= event_value(RADIAL_VELOCITY, 0.0, y_new)
     if above < _ON_LEVEL_M and after < 0 and turns:
-        return hi * crossing_fraction(RADIAL_VELOCITY, 0.0, t, t + hi, y, y_new, a, a_new, work)
+        fraction = crossing_fraction(RADIAL_VELOCITY, 0.0, t, t + hi, y, y_new, a, a_new, work)
+        if fraction < 1 - STRADDLE:
+            return hi * fraction
     return 0.0
 
 
