@@ -256,6 +256,10 @@ PROBES: dict[str, tuple[str, Err | Warned | Ok]] = {
     "firing bearing limits": ("firing.firing_solutions(GUN, TARGET, bearing_limits_deg=(nan, 10.0))", Err("bearing_limits_deg")),
     "firing empty targets": ("firing.firing_solutions(GUN, [])", Ok("r == []")),
     "firing case": ("firing.firing_solutions(GUN, TARGET)", Ok("r.low is not None or r.reason")),
+    "firing target at the gun": ("firing.firing_solutions(GUN, firing.TargetPoint(GUN.latitude_deg, GUN.longitude_deg))", Ok("r.roots == [] and r.reason.startswith('the target is at the gun')")),
+    "firing target above the gun": ("firing.firing_solutions(GUN, firing.TargetPoint(GUN.latitude_deg, GUN.longitude_deg, 50e3))", Ok("r.roots == [] and r.reason.startswith('the target is straight above the gun')")),
+    "firing target 100 m away": ("firing.firing_solutions(GUN.but(rotation_rate_rad_s=0.0), firing.destination(GUN, 109.0, 100.0))", Ok("'0.0 km' not in r.reason and \"the target's 100 m\" in r.reason")),
+    "firing target 1 m away": ("firing.firing_solutions(GUN.but(rotation_rate_rad_s=0.0), firing.destination(GUN, 109.0, 1.0))", Ok("r.roots == [] and 'nan' not in r.reason and 'km' not in r.reason")),
     # --- the error budget ---------------------------------------------------------------------
     "dispersion samples huge": ("error_budget.dispersion(B45, samples=10**12, progress=False)", Err("samples must lie in")),
     "dispersion samples one": ("error_budget.dispersion(B45, samples=1, progress=False)", Err("samples must lie in")),

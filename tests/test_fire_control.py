@@ -2,6 +2,7 @@
 Earth, the 3DOF itself, and bad input."""
 
 import math
+import re
 import warnings
 
 import numpy as np
@@ -13,6 +14,7 @@ from scipy import optimize
 from harp_analysis.analyses.fire_control.firing import (
     FiringSolution,
     TargetPoint,
+    destination,
     firing_solutions,
 )
 from harp_analysis.analyses.fire_control.intercepts import raid_windows
@@ -249,6 +251,33 @@ def test_unreachable_targets_say_why():
     assert len(wrapped.roots) == 2
     escaping = firing_solutions(VACUUM.but(speed_m_s=12e3), TargetPoint(0.0, 5.0))
     assert escaping.roots == [] and "escape" in escaping.reason
+
+
+@pytest.mark.parametrize("branch", ["descending", "ascending"])
+def test_a_target_at_the_gun_or_straight_above_it_says_why_it_has_no_solution(branch):
+    """No great-circle bearing leads from the gun to a point at it, along which the solver
+    searches: a result with that reason (not "reaches 0.0 km, beyond the target's 0.0 km"),
+    and the other targets of the batch keep their answers."""
+    here = TargetPoint(ROTATING.latitude_deg, ROTATING.longitude_deg)
+    above = TargetPoint(ROTATING.latitude_deg, ROTATING.longitude_deg, altitude_m=50e3)
+    elsewhere = _destination(ROTATING, 60.0, 60e3, altitude_m=30e3)
+    results = firing_solutions(ROTATING, [here, above, elsewhere], branch=branch)
+    for result, where in zip(results, ["at the gun (0 m", "straight above the gun, 50.0 km up"]):
+        assert result.roots == [] and result.reason.startswith(f"the target is {where}"), result
+        assert "great-circle bearing" in result.reason
+    assert results[2] == firing_solutions(ROTATING, elsewhere, branch=branch)
+    assert results[2].roots
+
+
+def test_a_target_metres_from_the_gun_is_quoted_in_metres():
+    """A short range's reasons quote its metres (the lob of the vertical shot falls back
+    about a kilometre away), never "0.0 km", and a root the search lost never "nan m"."""
+    still = ROTATING.but(rotation_rate_rad_s=0.0)
+    close = firing_solutions(still, _destination(still, 60.0, 100.0))
+    assert close.high is None and "beyond the target's 100 m" in close.reason, close.reason
+    assert re.search(r"still reaches \d{3} m,", close.reason), close.reason
+    closer = firing_solutions(still, destination(still, 109.0, 1.0))  # the low root's Newton
+    assert "km" not in closer.reason and "nan" not in closer.reason, closer.reason  # can't start
 
 
 # --- bad input: refused by name -----------------------------------------------------------------

@@ -43,12 +43,17 @@ __all__ = [
     "great_circle",
     "east_north",
     "BRANCHES",
+    "AT_GUN_M",
     "destination",
     "BARBADOS_HP",
     "barbados_case",
 ]
 
 BRANCHES = ("descending", "ascending")
+#: A target closer to the gun than this along the ground (m) is at the gun, or straight above
+#: it: far closer than any shot is aimed (the 3DOF refinement lands within a centimetre), and
+#: where the great-circle bearing from the gun, along which the solver searches, is lost.
+AT_GUN_M = 1e-3
 
 
 @dataclass(frozen=True)
@@ -288,28 +293,54 @@ def _elevation_deg(elevation_rad: float) -> str:
     return f"{math.degrees(elevation_rad):.2f} deg"
 
 
-def _missing(status: int, side: int, search: np.ndarray, distance_km: float, row) -> str:
+def _distance(metres: float) -> str:
+    """A distance for a message: in km to 0.1 km, or in m to three digits below 1 km."""
+    return f"{metres / 1e3:.1f} km" if abs(metres) >= 999.5 else f"{metres:.3g} m"
+
+
+def _missing(status: int, side: int, search: np.ndarray, row) -> str:
     """Why root ``side`` (0 low, 1 high) of a target is missing, from the solver's ``status``
     and ``search``; every range quoted is Earth-fixed ground range along the great circle."""
     name = ("low", "high")[side]
-    peak, reach, lowest, lowest_m, highest, highest_m, _ = search
+    peak, reach, lowest, lowest_m, highest, highest_m, distance_m = search
     if status == solver.BELOW_LOWEST:
         searched = "searched" if lowest <= solver.LOWEST_ELEVATION_RAD else "can fly"
         return (
             f"no low-angle root: the lowest elevation the MKS {searched} to it, "
-            f"{_elevation_deg(lowest)}, already reaches {lowest_m / 1e3:.1f} km, beyond the "
-            f"target's {distance_km:.1f} km"
+            f"{_elevation_deg(lowest)}, already reaches {_distance(lowest_m)}, beyond the "
+            f"target's {_distance(distance_m)}"
         )
     if status == solver.ABOVE_HIGHEST:
         searched = "searched" if highest >= solver.HIGHEST_ELEVATION_RAD else "can fly"
         return (
             f"no high-angle root: the highest elevation the MKS {searched} to it, "
-            f"{_elevation_deg(highest)}, still reaches {highest_m / 1e3:.1f} km, beyond the "
-            f"target's {distance_km:.1f} km"
+            f"{_elevation_deg(highest)}, still reaches {_distance(highest_m)}, beyond the "
+            f"target's {_distance(distance_m)}"
+        )
+    if not math.isfinite(row[3]):  # Newton's method found no usable MKS trajectory to start
+        return (
+            f"no {name}-angle root: the MKS has no usable trajectory where the search found "
+            "it (a root the search lost)"
         )
     return (
         f"no {name}-angle root: the refinement stopped {row[3]:.3g} m from the target "
         "(a root the search lost)"
+    )
+
+
+def _at_gun(target: TargetPoint, distance_m: float) -> str | None:
+    """Why a target at the gun (closer than :data:`AT_GUN_M` along the ground) has no firing
+    solution; None for any other."""
+    if distance_m >= AT_GUN_M:
+        return None
+    where = (
+        "at the gun"
+        if target.altitude_m == 0.0
+        else f"straight above the gun, {_distance(target.altitude_m)} up"
+    )
+    return (
+        f"the target is {where} ({distance_m:.3g} m from it along the ground): there is no "
+        "great-circle bearing from the gun to it, along which the solver searches"
     )
 
 
@@ -332,17 +363,11 @@ def _solutions(
     )
     results = []
     for i, target in enumerate(targets):
-        distance_km = search[i, 6] / 1e3
-        if branch == "ascending" and target.altitude_m == 0.0:
-            results.append(
-                FiringSolutions(
-                    None,
-                    None,
-                    "the ascending branch meets altitude 0 only at the muzzle",
-                    0,
-                    math.nan,
-                )
-            )
+        degenerate = _at_gun(target, search[i, 6])
+        if degenerate is None and branch == "ascending" and target.altitude_m == 0.0:
+            degenerate = "the ascending branch meets altitude 0 only at the muzzle"
+        if degenerate is not None:
+            results.append(FiringSolutions(None, None, degenerate, int(counts[i]), math.nan))
             continue
         both = int(status[i, 0]) if status[i, 0] == status[i, 1] else -1
         reason = {
@@ -356,8 +381,8 @@ def _solutions(
                 "the MKS escapes at every elevation: the muzzle speed exceeds escape speed"
             ),
             solver.BEYOND_RANGE: (
-                f"beyond the maximum range: the target is {distance_km:.1f} km away along the "
-                f"ground, the gun reaches at most {search[i, 1] / 1e3:.1f} km toward it at "
+                f"beyond the maximum range: the target is {_distance(search[i, 6])} away along "
+                f"the ground, the gun reaches at most {_distance(search[i, 1])} toward it at "
                 f"{target.altitude_m / 1e3:g} km altitude (at "
                 f"{_elevation_deg(search[i, 0])}; Earth-fixed ground ranges)"
             ),
@@ -371,7 +396,7 @@ def _solutions(
             row = roots[i, side]
             if status[i, side] != solver.FOUND:
                 found.append(None)
-                reasons.append(_missing(status[i, side], side, search[i], distance_km, row))
+                reasons.append(_missing(status[i, side], side, search[i], row))
                 continue
             root, why = _root(row, target, branch, limits)
             found.append(root)
@@ -439,8 +464,9 @@ def firing_solutions(gun, targets, *, bearing_limits_deg=None, branch="descendin
     (one TargetPoint, or a sequence of them: one result each, solved together by the compiled
     solver of :mod:`.solver`, the same answers either way), meeting each on the
     trajectory's ``branch`` ("descending" or "ascending"). The bearing is limited to the arc
-    turning clockwise from bearing_limits_deg[0] to [1] if given. A target out of reach is a
-    result with no roots and the reason, not an exception.
+    turning clockwise from bearing_limits_deg[0] to [1] if given. A target out of reach, or at
+    the gun (closer than :data:`AT_GUN_M` along the ground), is a result with no roots and the
+    reason, not an exception.
 
     Parameters
     ----------
