@@ -75,7 +75,7 @@ from harp_analysis.analyses.harp import apogees, appendices, confidence, rounds
 from harp_analysis.engines import eci, mks, mks_improved, mlt, sixdof, threedof
 from harp_analysis.foundation import sweeps
 from harp_analysis.models import atmosphere, projectiles
-from harp_analysis.reporting import registry
+from harp_analysis.reporting import explorer, registry
 from harp_analysis.models.launch import (
     HP_CHAPTER_2,
     LP_CHAPTER_2,
@@ -354,6 +354,9 @@ PROBES: dict[str, tuple[str, Err | Warned | Ok]] = {
     "registry figure file": ("registry.figure_file('99.9')", Err("'99.9' is not in the figure registry")),
     "registry missing file": ("registry.load_registry('/nonexistent/figures.toml')", Err("/nonexistent/figures.toml")),
     "registry loads": ("registry.get_entry('2.1')", Ok("r.number == '2.1'")),
+    # --- the explorer: a model's validity said once -------------------------------------------
+    "explorer beta above 0.25": ("explorer.fly(HP_CHAPTER_2)[1]", Ok("[m[:13] for m in r if 'beta' in m] == ['MKS beta = 0.']")),
+    "explorer beta above 1": ("explorer.fly(baseline_chapter_4(3.0))[1]", Ok("len([m for m in r if 'beta' in m]) == 1 and any('beta' in m and 'no MKS is shown' in m for m in r)")),
 }
 # fmt: on
 

@@ -22,7 +22,7 @@ from harp_analysis.analyses.harp import apogees
 from harp_analysis.engines import mks, mks_improved, threedof
 from harp_analysis.foundation import earth
 from harp_analysis.models.launch import HP_CHAPTER_2, Launch
-from harp_analysis.models.projectiles import HP
+from harp_analysis.models.projectiles import BASELINE, HP
 from harp_analysis.reporting import explorer
 
 
@@ -132,6 +132,26 @@ def test_bad_input_is_a_message_never_a_traceback(changes, says):
     for name, value in changes.items():
         view.controls[name].value = value
     assert says in view.messages.value
+
+
+@pytest.mark.parametrize(
+    "launch, shown",
+    [
+        (HP_CHAPTER_2, True),  # beta 0.275: shown, and warned of
+        (Launch(BASELINE, 2157.0, 3.0), False),  # beta 1.44: the series fails, not shown
+    ],
+)
+def test_the_mks_beta_is_one_message(launch, shown):
+    """The MKS's own warning says its beta is beyond the text's 0.25, once, in its words;
+    where the explorer hides the MKS (beta above 1), the same message says so."""
+    flown, messages = explorer.fly(launch)
+    about_beta = [text for text in messages if "beta" in text]
+    assert len(about_beta) == 1, messages
+    assert re.match(
+        r"MKS beta = [\d.]+ > 0.25: the text finds the solution inaccurate", about_beta[0]
+    )
+    assert ("MKS" in flown) == shown
+    assert ("no MKS is shown" in about_beta[0]) == (not shown)
 
 
 def test_a_round_that_escapes_is_said_to():

@@ -31,4 +31,4 @@ def test_the_first_example_prints_what_the_readme_says():
         [sys.executable, "-c", code], capture_output=True, text=True, timeout=600, check=True
     )
     assert run.stdout == printed
-    assert "ModelValidityWarning: MKS beta = 0.275 > 0.25" in run.stderr  # the warning it names
+    assert "HighDragWarning: MKS beta = 0.275 > 0.25" in run.stderr  # the warning it names

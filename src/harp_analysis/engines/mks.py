@@ -74,12 +74,20 @@ __all__ = [
     "gun_density_kg_m3",
     "simulate_mks",
     "BETA_VALIDITY_LIMIT",
+    "HighDragWarning",
     "SENSIBLE_ATMOSPHERE_M",
     "warm_up",
 ]
 
 #: Chapter 4 B: "a beta value of less than 0.25 is required for a reasonably accurate MKS".
 BETA_VALIDITY_LIMIT = 0.25
+
+
+class HighDragWarning(ModelValidityWarning):
+    """An MKS launch's beta (eq 3.22) exceeds :data:`BETA_VALIDITY_LIMIT`: the text finds the
+    solution inaccurate for such high-drag projectiles (Ch. 4 B)."""
+
+
 #: Chapter 3: the Kepler solution "is reasonably valid above 30 km".
 SENSIBLE_ATMOSPHERE_M = 30_000.0
 #: The radius of the Earth's sphere of influence against the Sun, a (m_earth/m_sun)^(2/5)
@@ -843,7 +851,7 @@ class ModifiedKeplerSolution:
             warnings.warn(
                 f"MKS beta = {self.beta.max():.3g} > {BETA_VALIDITY_LIMIT}: the text finds "
                 "the solution inaccurate for such high-drag projectiles (Ch. 4 B)",
-                ModelValidityWarning,
+                HighDragWarning,
                 stacklevel=3,
             )
         if beyond:

@@ -436,24 +436,23 @@ def fly(launch: Launch, engines=ENGINES[:2]) -> tuple[dict[str, Flown], list[str
                     flown[engine] = _improved_mks(launch, three)
             except (ValueError, TypeError, ArithmeticError) as error:
                 messages.append(in_readers_words(f"The {engine} cannot fly this launch: {error}"))
-    for warning in caught:  # the models' own warnings, not numpy's arithmetic on the way
-        text = in_readers_words(str(warning.message))
-        if not issubclass(warning.category, RuntimeWarning) and text not in messages:
-            messages.append(text)
     beta = flown["MKS"].beta if "MKS" in flown else None
-    if beta is not None and beta > MKS_SHOWN_BETA:
+    hidden = beta is not None and beta > MKS_SHOWN_BETA
+    if hidden:
         for engine in ("MKS", "improved MKS"):
             flown.pop(engine, None)
-        messages.append(
-            f"MKS beta = {beta:.2f}, far beyond the text's {mks.BETA_VALIDITY_LIMIT:g}: the "
-            "three-term series of the drag's driving function (eq 3.30) is off by a factor of "
-            "seven or more, so no MKS is shown."
-        )
-    elif beta is not None and beta > mks.BETA_VALIDITY_LIMIT:
-        messages.append(
-            f"MKS beta = {beta:.3f} > {mks.BETA_VALIDITY_LIMIT:g}: the text finds the solution "
-            "inaccurate for such high-drag projectiles (Chapter 4 B)."
-        )
+    not_shown = (
+        f"beyond beta = {MKS_SHOWN_BETA:g} the three-term series of the drag's driving function "
+        "(eq 3.30) is off by a factor of seven or more, so no MKS is shown"
+    )
+    for warning in caught:  # the models' own warnings, not numpy's arithmetic on the way
+        text = in_readers_words(str(warning.message))
+        if hidden and issubclass(warning.category, mks.HighDragWarning):  # its beta: one message
+            text, hidden = f"{text}; {not_shown}", False
+        if not issubclass(warning.category, RuntimeWarning) and text not in messages:
+            messages.append(text)
+    if hidden:  # the MKS's beta (eq 3.22) within its limit, this one (its decay's) not
+        messages.append(f"MKS beta x decay scale = {beta:.2f}: {not_shown}.")
     apogee = flown[_REFERENCE.label].apogee_m
     if not math.isfinite(apogee):
         messages.append(
