@@ -154,6 +154,14 @@ def test_the_mks_beta_is_one_message(launch, shown):
     assert ("no MKS is shown" in about_beta[0]) == (not shown)
 
 
+def test_the_sensible_atmosphere_is_not_the_atmosphere_control():
+    """A message's plain word "atmosphere" stays a word; only the field is the control's label."""
+    _, messages = explorer.fly(Launch(BASELINE, 2157.0, 10.0))
+    assert any("does not leave the sensible atmosphere" in text for text in messages), messages
+    assert not any('"Atmosphere"' in text for text in messages), messages
+    assert explorer.in_readers_words("launch.atmosphere = 1") == '"Atmosphere" = 1'
+
+
 def test_a_round_that_escapes_is_said_to():
     """12 km/s is past the escape speed (11.2 km/s at the surface, before drag): no apogee."""
     launch = explorer.launch_for(explorer.Settings(projectile="baseline", speed_m_s=12e3))

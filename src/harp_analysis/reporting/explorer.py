@@ -146,8 +146,11 @@ _READERS_WORDS = {
     "h_inf": ("h∞", 1.0),
 }
 _CODE_NAME = re.compile(
-    r"\b(?:launch\.|projectile\.)?(" + "|".join(_READERS_WORDS) + r")\b(?: = ([-+.\deEinfa]+))?"
+    r"\b(launch\.|projectile\.)?(" + "|".join(_READERS_WORDS) + r")\b(?: = ([-+.\deEinfa]+))?"
 )
+#: Code names that are English words too ("the sensible atmosphere"): a field's name only as
+#: one's (``launch.atmosphere``) or with its value.
+_ALSO_WORDS = {"atmosphere"}
 _NAMED = {"HP": HP, "LP": LP, "baseline": BASELINE}
 _DRAW_DPI = 90
 #: A message wraps at the width of the views, long words and code included.
@@ -316,13 +319,14 @@ def in_readers_words(text: str) -> str:
     the control's label and the value in the control's unit ("Cross wind (m/s)" = 5)."""
 
     def words(match: re.Match) -> str:
-        label, scale = _READERS_WORDS[match.group(1)]
-        if match.group(2) is None:
-            return f'"{label}"'
+        owner, name, value = match.groups()
+        label, scale = _READERS_WORDS[name]
+        if value is None:
+            return match.group(0) if name in _ALSO_WORDS and owner is None else f'"{label}"'
         try:
-            return f'"{label}" = {float(match.group(2)) * scale:g}'
+            return f'"{label}" = {float(value) * scale:g}'
         except ValueError:
-            return f'"{label}" = {match.group(2)}'
+            return f'"{label}" = {value}'
 
     return _CODE_NAME.sub(words, text)
 
