@@ -283,8 +283,7 @@ def _effort_figure(table, column: str, label: str, methods) -> Figure:
                 va="center", fontsize=11, annotation_clip=False,
                 bbox=dict(fc="white", ec="none", pad=0.5))  # fmt: skip
     ax.set_xlabel("apogee difference from the 6DOF (m)")
-    ax.set_ylabel(f"{label}\n(simulations: per trajectory to impact; MKS: per apogee)",
-                  fontsize=9)  # fmt: skip
+    ax.set_ylabel(f"{label}\n(simulations to impact, MKS at apogee)", fontsize=9)
     return fig
 
 
