@@ -108,6 +108,40 @@ def test_unreachable_points_keep_their_reason(east_map):
     assert far.reason.str.contains("beyond the maximum range").all()
 
 
+def test_each_point_has_one_outcome(east_map):
+    """A measured miss where the 3DOF gets there, no solution where the MKS has none; the map
+    east has no third kind (test_a_root_the_3dof_never_reaches_is_told_apart)."""
+    measured = east_map.outcome == envelope.MEASURED
+    assert set(east_map.outcome) <= set(envelope.OUTCOMES)
+    assert (measured == np.isfinite(east_map.miss_3dof_m)).all()
+    assert ((east_map.outcome == envelope.NO_SOLUTION) == east_map.elevation_deg.isna()).all()
+    assert (east_map.apogee_3dof_m[measured] > east_map.altitude_m[measured]).all()
+
+
+def test_a_root_the_3dof_never_reaches_is_told_apart():
+    """Due west, 100 km out at 20 km, the MKS has a low root whose 3DOF flight peaks below the
+    target (Fig X.1's stars): not 'no solution' but a root the 3DOF cannot reach. Checked by
+    another flight: the 3DOF's trajectory table to the ground, its highest row against the
+    target's altitude; at sea level the 3DOF gets there and its miss is measured."""
+    west = envelope.miss_map(GUN, 270.0, [60e3, 100e3], [0.0, 20e3], progress=False)
+    assert list(west.outcome.value_counts().sort_index().items()) == [
+        (envelope.MEASURED, 2),
+        (envelope.NEVER_THERE, 1),
+        (envelope.NO_SOLUTION, 1),
+    ]
+    for row in west[west.outcome != envelope.NO_SOLUTION].itertuples():
+        flown = GUN.but(elevation_deg=row.elevation_deg, bearing_deg=row.bearing_deg)
+        top = threedof.simulate_3dof(flown, output_step_s=0.1).altitude_m.max()
+        assert row.apogee_3dof_m == pytest.approx(top, abs=5.0)
+        expected = envelope.NEVER_THERE if top < row.altitude_m else envelope.MEASURED
+        assert row.outcome == expected, (row.downrange_m, row.altitude_m)
+    (never,) = west[west.outcome == envelope.NEVER_THERE].itertuples()
+    assert (never.downrange_m, never.altitude_m) == (100e3, 20e3)
+    assert math.isnan(never.miss_3dof_m) and never.reason.startswith(
+        "the 3DOF fired at the MKS solution never reaches the target's altitude: its apogee"
+    )
+
+
 def test_map_runs_on_a_client_with_the_same_result(east_map):
     with distributed.Client(
         processes=False,

@@ -1,6 +1,7 @@
 """The figure lint: every saved figure is 6.5 in wide, and save_figure refuses a figure with
 labels over one another or over a curve, data clipped silently or ink off the page
-(plotting.figure_defects). Each defect is drawn here once, to see the lint catch it; the
+or markers cut by the axes' edge (plotting.figure_defects). Each defect is drawn here once, to
+see the lint catch it; the
 notebooks' own figures are linted as they are saved (every `make test` and `make figures`),
 and the committed files' sizes are read back from figures/."""
 
@@ -66,6 +67,86 @@ def test_a_note_that_pushes_past_the_page_is_caught():
     assert any("runs off the page" in d for d in plotting.figure_defects(fig))
 
 
+def test_a_y_label_taller_than_the_axes_is_caught():
+    """The old way of Fig 4.7: a two-line y label longer than the axes are tall, centred on
+    them, runs off the page: constrained layout makes room beside the axes, not along them."""
+    fig, ax = _clean_figure()
+    ax.set_ylabel("floating-point operations\n(simulations: per trajectory to impact; "
+                  "MKS: per apogee)")  # fmt: skip
+    (defect,) = plotting.figure_defects(fig)
+    assert defect == (
+        "axes 'floating-point operations (simulations: per trajectory to impact; MKS: per "
+        "apogee)': y label 'floating-point operations (simulations: per trajectory to impact; "
+        "MKS: per apogee)' runs off the page"
+    )
+
+
+def test_a_tick_label_and_a_title_off_the_page_are_caught():
+    """Texts no label list holds: a tick label past the page's edge (a figure laid out by hand
+    with no room for it) and a title pushed above the page."""
+    fig, ax = plotting.new_figure(figsize=(plotting.FULL_WIDTH_IN, 3.0))
+    fig.subplots_adjust(left=0.0, right=1.0, bottom=0.2, top=0.8)
+    ax.set_xticks([0.5])
+    ax.set_yticks([0.0, 0.5, 1.0], ["nought", "a half", "one"])
+    ax.set_title("a title", pad=80)
+    defects = plotting.figure_defects(fig)
+    assert defects == [
+        "axes 'a title': y tick label 'nought' runs off the page",
+        "axes 'a title': y tick label 'a half' runs off the page",
+        "axes 'a title': y tick label 'one' runs off the page",
+        "axes 'a title': title 'a title' runs off the page",
+    ]
+
+
+def test_a_marker_on_the_axes_edge_is_caught():
+    """The old way of Figs X.1 and X.2: the outer row and column of a grid of markers on the
+    axes' limits, each cut in half; margins take them in."""
+    fig, ax = plotting.new_figure(figsize=(plotting.FULL_WIDTH_IN, 3.0), layout="constrained")
+    x, y = np.meshgrid(np.arange(4.0), np.arange(3.0))
+    ax.plot(x.ravel(), y.ravel(), "s", markersize=6, label="grid")
+    ax.set_xlim(0.0, 3.0)  # the first and last columns on the edges
+    ax.set_ylim(-0.5, 2.5)
+    assert plotting.figure_defects(fig) == [
+        "axes 0: Line2D 'grid': 6 of its markers cut by the axes' edge, the first at (0, 0) "
+        "(the axes need margins)"
+    ]
+    ax.set_xlim(-0.5, 3.5)
+    assert plotting.figure_defects(fig) == []
+
+
+def test_a_marker_of_a_curve_at_the_axes_corner_is_caught():
+    """Markers every few points along a curve starting at the axes' origin: the first one cut;
+    markevery's own subsampling decides which are drawn."""
+    fig, ax = _clean_figure()
+    x = np.linspace(0.0, 10.0, 101)
+    ax.plot(x, 0.1 * x, marker="o", markevery=10, label="markers on a curve")
+    ax.set_xlim(0.0, 11.0)
+    ax.set_ylim(0.0, 1.2)
+    (defect,) = [d for d in plotting.figure_defects(fig) if "markers" in d]
+    assert defect.endswith("Line2D 'markers on a curve': 1 of its markers cut by the axes' edge, "
+                           "the first at (0, 0) (the axes need margins)")  # fmt: skip
+    ax.lines[-1].set_markevery((5, 10))  # from the sixth point on: none near an edge
+    assert not [d for d in plotting.figure_defects(fig) if "markers" in d]
+
+
+def test_a_curve_leaving_the_axes_keeps_its_markers_whole():
+    """The old way of Fig 2.7's detail panel: a curve marked every few points leaves the axes
+    with a marker on the edge; keep_markers_whole leaves that one out, and only that one."""
+    fig, ax = _clean_figure()
+    x = np.linspace(0.0, 10.0, 101)
+    (line,) = ax.plot(x, 0.3 * x, marker="o", markevery=(10, 20), label="leaving")
+    ax.set_ylim(-1.2, 2.7)  # the marker at x = 9 on the top edge
+    (defect,) = plotting.figure_defects(fig)
+    assert defect.endswith("Line2D 'leaving': 1 of its markers cut by the axes' edge, the first "
+                           "at (9, 2.7) (the axes need margins)")  # fmt: skip
+    plotting.keep_markers_whole(fig, [line])
+    assert line.get_markevery() == [10, 30, 50, 70]
+    assert plotting.figure_defects(fig) == []
+    (points,) = ax.plot([1.0, 2.0], [0.0, 0.5], "o", label="points")
+    with pytest.raises(ValueError, match="'points' is markers only"):
+        plotting.keep_markers_whole(fig, [points])
+
+
 def test_two_labels_over_one_another_are_caught():
     fig, ax = _clean_figure()
     ax.annotate("30 deg", (5.0, 0.0))
@@ -75,8 +156,10 @@ def test_two_labels_over_one_another_are_caught():
 
 
 def test_two_panels_labels_over_one_another_are_caught():
-    """As in a pair of panels laid out by hand, each x label wider than its panel."""
-    fig, (left, right) = plotting.new_figure(1, 2, figsize=(plotting.FULL_WIDTH_IN, 3.0))
+    """As in a pair of panels laid out by hand, each x label wider than its panel (the figure
+    tall enough for the labels to stay on the page, which matplotlib's default margins keep
+    only from 4 in up)."""
+    fig, (left, right) = plotting.new_figure(1, 2, figsize=(plotting.FULL_WIDTH_IN, 4.0))
     for ax in (left, right):
         ax.set_xlabel("distance from the nominal 3DOF flight (km)")
     (defect,) = plotting.figure_defects(fig)

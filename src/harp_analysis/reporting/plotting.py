@@ -17,12 +17,12 @@ Saving. :func:`save_figure` writes each figure twice, a vector PDF and a 300 dpi
 the registry's name, exactly :data:`FULL_WIDTH_IN` wide (the page is the figure's own size,
 never a box cropped to the ink: everything drawn must fit it, as constrained layout makes it,
 and notes belong in the registry's caption, not around the axes), once :func:`figure_defects`
-finds nothing wrong with it (labels over labels or over curves, data clipped silently, ink off
-the page), with no software or time stamps, through a temporary file renamed into place: an
-interrupted run never leaves a truncated figure. The PDF's fonts are embedded as TrueType
-(Type 42), subset without the tables a PDF never reads, and mathtext is laid out once per save
-(:func:`_shortcuts`): a save takes about 70 % of the time matplotlib's own ways take
-(benchmarks/bench_figures.py).
+finds nothing wrong with it (labels over labels or over curves, data clipped silently, any
+text off the page, markers cut by the axes' edge), with no software or time stamps, through a
+temporary file renamed into place: an interrupted run never leaves a truncated figure. The
+PDF's fonts are embedded as TrueType (Type 42), subset without the tables a PDF never reads, and
+mathtext is laid out once per save (:func:`_shortcuts`): a save takes about 70 % of the time
+matplotlib's own ways take (benchmarks/bench_figures.py).
 """
 
 from __future__ import annotations
@@ -30,19 +30,24 @@ from __future__ import annotations
 import contextlib
 import functools
 import io
+from collections.abc import Iterator
 from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
 import matplotlib
 import matplotlib.pyplot as plt
+import numpy as np
 from fontTools import subset
 from fontTools.ttLib import TTFont
+from matplotlib import lines as mlines
 from matplotlib.backends import _backend_pdf_ps
 from matplotlib.figure import Figure
+from matplotlib.markers import MarkerStyle
 from matplotlib.mathtext import MathTextParser
+from matplotlib.path import Path as MplPath
 from matplotlib.text import Text
-from matplotlib.transforms import Bbox
+from matplotlib.transforms import Bbox, IdentityTransform
 
 from ..foundation.paths import write_atomically
 from .registry import figure_file
@@ -58,6 +63,7 @@ __all__ = [
     "style",
     "elevation_style",
     "label_lines",
+    "keep_markers_whole",
     "new_figure",
     "figure_defects",
     "label_overlaps",
@@ -193,6 +199,10 @@ def _name(artist) -> str:
     return type(artist).__name__
 
 
+def _markers_only(line) -> bool:
+    return line.get_linestyle() in ("None", "none", "", " ")  # as matplotlib spells "none"
+
+
 def _shrunk(box, points: float, dpi: float):
     pad = points * dpi / 72.0
     return box.padded(-pad) if box.width > 2 * pad and box.height > 2 * pad else box
@@ -213,7 +223,7 @@ def _data_outside_limits(ax) -> list[str]:
         low, high = limits.min(axis=0), limits.max(axis=0)
         finite = points[(points == points).all(axis=1)]
         inside = ((finite >= low) & (finite <= high)).all(axis=1)
-        marker_only = line.get_linestyle() in ("None", "none", "", " ")
+        marker_only = _markers_only(line)
         if len(finite) and not inside.any():
             found.append(f"{_name(line)} lies wholly outside the axes' limits")
         elif marker_only and not inside.all():
@@ -239,7 +249,7 @@ def label_overlaps(ax, label, renderer, *, labels=None) -> list[str]:
         if other is not label and box.overlaps(_box(other, renderer)):
             found.append(f"overlaps {_name(other)}")
     for line in ax.lines:
-        if not line.get_visible() or line.get_linestyle() in ("None", "none", "", " "):
+        if not line.get_visible() or _markers_only(line):
             continue
         seen = Bbox.intersection(box, ax.bbox) if line.get_clip_on() else box
         path = line.get_transform().transform_path(line.get_path())
@@ -249,34 +259,177 @@ def label_overlaps(ax, label, renderer, *, labels=None) -> list[str]:
 
 
 def _off_the_page(label, renderer) -> bool:
-    page = label.figure.bbox.padded(_OVERLAP_TOLERANCE_PT * label.figure.dpi / 72.0)
+    figure = label.get_figure(root=True)
+    page = figure.bbox.padded(_OVERLAP_TOLERANCE_PT * figure.dpi / 72.0)
     box = _box(label, renderer)
     return not (page.contains(box.x0, box.y0) and page.contains(box.x1, box.y1))
 
 
+@contextlib.contextmanager
+def _recording_texts() -> Iterator[list[Text]]:
+    """Inside, every text drawn with something to show (tick labels, axis labels, titles,
+    legends' entries, annotations, contour labels) is appended to the list yielded: exactly
+    what a drawing shows, where a text's own settings cannot tell (a tick outside the limits,
+    an annotation whose point is clipped, an axes switched off)."""
+    drawn: list[Text] = []
+    draw = Text.draw
+
+    @functools.wraps(draw)
+    def recorded(text, renderer):
+        draw(text, renderer)
+        if text.get_visible() and text.get_text().strip():
+            drawn.append(text)
+
+    Text.draw = recorded  # type: ignore[method-assign, assignment]  # restored below
+    try:
+        yield drawn
+    finally:
+        Text.draw = draw  # type: ignore[method-assign]
+
+
+def _axes_name(ax) -> str:
+    """An axes as messages name it: by its title, else its y label, else its place."""
+    name = " ".join((ax.get_title() or ax.get_ylabel()).split("\n"))
+    return f"axes {name!r}" if name else f"axes {ax.get_figure(root=True).axes.index(ax)}"
+
+
+def _text_roles(fig) -> dict[int, str]:
+    """What each text of ``fig`` that is part of something is (by ``id``): an axes' "x label",
+    "y tick label", "title", a legend's "legend entry", with its axes' name, for messages."""
+    roles = {}
+    for ax in fig.axes:
+        where = _axes_name(ax)
+        roles[id(ax.title)] = f"{where}: title"
+        for letter, axis in (("x", ax.xaxis), ("y", ax.yaxis)):
+            roles[id(axis.label)] = f"{where}: {letter} label"
+            roles[id(axis.offsetText)] = f"{where}: {letter} axis's offset"
+            for tick in [*axis.majorTicks, *axis.minorTicks]:
+                roles.update(dict.fromkeys((id(tick.label1), id(tick.label2)),
+                                           f"{where}: {letter} tick label"))  # fmt: skip
+    for legend in [*(ax.get_legend() for ax in fig.axes), *fig.legends]:
+        if legend is not None:
+            roles.update(dict.fromkeys(map(id, legend.texts), "legend entry"))
+            roles[id(legend.get_title())] = "legend title"
+    return roles
+
+
+def _texts_off_the_page(fig, drawn, renderer) -> list[str]:
+    """Each of the ``drawn`` texts of ``fig``, and each legend, not wholly on the page, named
+    by what it is (:func:`_text_roles`): a y label longer than the axes is tall, a tick label
+    past the page's edge."""
+    roles = _text_roles(fig)
+    found = []
+    for text in drawn:
+        if _off_the_page(text, renderer):
+            role = roles.get(id(text)) or (
+                f"{_axes_name(text.axes)}: text" if text.axes is not None else "figure text"
+            )
+            found.append(f"{role} {_name(text)} runs off the page")
+    legends = [ax.get_legend() for ax in fig.axes] + fig.legends
+    for legend in legends:
+        if legend is not None and legend.get_visible() and _off_the_page(legend, renderer):
+            found.append(f"a legend of {len(legend.texts)} entries runs off the page")
+    return found
+
+
+def _marked(line) -> np.ndarray:
+    """The indices of ``line``'s points that carry a marker: every finite one, or those
+    ``markevery`` picks, as matplotlib subsamples them when it draws the line."""
+    centres = line.get_transform().transform(line.get_xydata())
+    finite = np.isfinite(centres).all(axis=1)
+    if line.get_markevery() is None:
+        return np.flatnonzero(finite)
+    # matplotlib's own subsampling, as Line2D.draw's (a private function of matplotlib.lines)
+    kept = mlines._mark_every_path(  # type: ignore[attr-defined]
+        line.get_markevery(), MplPath(centres), IdentityTransform(), line.axes
+    ).vertices
+    return np.flatnonzero(finite & (centres[:, None, :] == kept[None]).all(axis=2).any(axis=1))
+
+
+def _cut_markers(line, renderer) -> tuple[np.ndarray, np.ndarray]:
+    """The indices of ``line``'s points that carry a marker the axes may cut (:func:`_marked`;
+    none if it has no markers or is not clipped), and which of those markers its axes cut: their
+    centre within their own half-size of the axes' edge, inside or out, so that they show in
+    part."""
+    marker = MarkerStyle(line.get_marker())
+    drawn = np.asarray(marker.get_path().vertices).size  # none for "None", "" and " "
+    if not line.get_visible() or not line.get_clip_on() or not drawn:
+        return np.array([], dtype=int), np.array([], dtype=bool)
+    marked = _marked(line)
+    centres = line.get_transform().transform(line.get_xydata()[marked])
+    # the marker's ink about its centre (pixels): its outline at the marker's size, and half its
+    # edge's width, less the lint's tolerance
+    shape = marker.get_path().get_extents(marker.get_transform())
+    size = renderer.points_to_pixels(line.get_markersize())
+    edge = renderer.points_to_pixels(line.get_markeredgewidth()) / 2.0
+    tolerance = renderer.points_to_pixels(_OVERLAP_TOLERANCE_PT)
+    low = centres + size * np.array([shape.x0, shape.y0]) - edge + tolerance
+    high = centres + size * np.array([shape.x1, shape.y1]) + edge - tolerance
+    box = line.axes.bbox
+    seen = ((high > [box.x0, box.y0]) & (low < [box.x1, box.y1])).all(axis=1)
+    whole = ((low >= [box.x0, box.y0]) & (high <= [box.x1, box.y1])).all(axis=1)
+    return marked, seen & ~whole
+
+
+def _markers_cut(ax, renderer) -> list[str]:
+    """Series whose markers ``ax`` cuts (:func:`_cut_markers`): data points on the axes' limits
+    (the axes need margins, or limits that take the markers in), or a curve's marker where it
+    leaves the axes (:func:`keep_markers_whole`). A marker wholly outside is not cut but hidden
+    (:func:`_data_outside_limits` says where that is a defect)."""
+    found = []
+    for line in ax.lines:
+        marked, cut = _cut_markers(line, renderer)
+        if cut.any():
+            x, y = line.get_xydata()[marked[cut][0]]
+            found.append(
+                f"{_name(line)}: {int(cut.sum())} of its markers cut by the axes' edge, the "
+                f"first at ({x:.4g}, {y:.4g}) (the axes need margins)"
+            )
+    return found
+
+
+def keep_markers_whole(fig, lines=None) -> None:
+    """Leave out of each of ``lines`` (curves marked every few points, as laid out in ``fig``;
+    default every curve of ``fig`` with markers) the markers its axes would cut
+    (:func:`_cut_markers`): where a curve leaves the axes, or runs along an axis, its line goes
+    to the edge and its markers stop short of it. Call it once the figure is laid out (its
+    limits, labels and legends set). Not for a series of markers only, whose every marker is a
+    datum (ValueError if given one): its axes need margins."""
+    if lines is None:
+        lines = [line for ax in fig.axes for line in ax.lines if not _markers_only(line)]
+    fig.draw_without_rendering()
+    renderer = fig.canvas.get_renderer()
+    for line in lines:
+        if _markers_only(line):
+            raise ValueError(f"{_name(line)} is markers only: give its axes margins instead")
+        marked, cut = _cut_markers(line, renderer)
+        if cut.any():
+            line.set_markevery(marked[~cut].tolist())
+
+
 def figure_defects(fig) -> list[str]:
     """What a reader would trip on in ``fig``, as drawn: its width other than
-    :data:`FULL_WIDTH_IN`; ink off the page; within an axes, two labels (texts, annotations,
-    the legend) over one another, or a label over a curve (:func:`label_overlaps`); the labels
+    :data:`FULL_WIDTH_IN`; any text (tick labels, axis labels of one line or more, titles,
+    legends, annotations) off the page (:func:`_texts_off_the_page`); within an axes, two
+    labels (texts, annotations, the legend) over one another, or a label over a curve
+    (:func:`label_overlaps`); markers cut by the axes' edge (:func:`_markers_cut`); the labels
     of different panels over one another (:func:`_decorations_overlapping`); data clipped
     silently (:func:`_data_outside_limits`). Empty when there is none."""
     found = []
     if abs(fig.get_figwidth() - FULL_WIDTH_IN) > 1e-9:
         found.append(f"the figure is {fig.get_figwidth():g} in wide, not {FULL_WIDTH_IN:g} in")
-    fig.draw_without_rendering()
+    with _recording_texts() as drawn:
+        fig.draw_without_rendering()
     renderer = fig.canvas.get_renderer()
+    found += _texts_off_the_page(fig, drawn, renderer)
     for ax in fig.axes:
-        where = f"axes {ax.get_title() or ax.get_ylabel() or fig.axes.index(ax)!r}"
+        where = _axes_name(ax)
         labels = _texts(ax)
         for i, label in enumerate(labels):
-            if _off_the_page(label, renderer):
-                found.append(f"{where}: {_name(label)} runs off the page")
             overlaps = label_overlaps(ax, label, renderer, labels=labels[i + 1 :])
             found += [f"{where}: {_name(label)} {overlap}" for overlap in overlaps]
         found += [f"{where}: {defect}" for defect in _data_outside_limits(ax)]
-    for text in fig.texts:
-        if text.get_text().strip() and _off_the_page(text, renderer):
-            found.append(f"figure text {_name(text)} runs off the page")
+        found += [f"{where}: {defect}" for defect in _markers_cut(ax, renderer)]
     found += _decorations_overlapping(fig, renderer)
     return found
 

@@ -7,7 +7,11 @@ met on the trajectory's descending branch) the ECI MKS firing solution
 the target's altitude, and its miss measured: the straight-line distance (m) from the 3DOF's
 Earth-fixed end point to the target's (:meth:`.fire_control.TargetPoint.earth_fixed_m`). It
 is the first step of :func:`.fire_control.verify_with_3dof` without its shooting refinement,
-which would be far too slow for a map. Points with no firing solution keep the reason.
+which would be far too slow for a map. Each point's ``outcome`` (:data:`OUTCOMES`) says which of
+three it is: the 3DOF's miss measured; no MKS firing solution; or an MKS solution that the 3DOF,
+fired at it, never brings to the target's altitude (its apogee below it: the MKS's trajectory of
+the same launch climbs higher than the 3DOF's), a root the MKS claims and the 3DOF cannot reach.
+The last two keep the reason.
 
 The points run through :func:`.sweeps.sweep`, an altitude's row of them at a time (solved
 together by the compiled solver, the 3DOF flown at them as one batch): in this process, or on
@@ -32,9 +36,17 @@ from ...models.launch import Launch, Launches
 from ...models.trajectory import EndAltitudeNotCrossedWarning
 from .firing import destination, firing_solutions
 
-__all__ = ["ROOTS", "MAP_COLUMNS", "miss_map"]
+__all__ = ["ROOTS", "OUTCOMES", "MEASURED", "NO_SOLUTION", "NEVER_THERE", "MAP_COLUMNS", "miss_map"]
 
 ROOTS = ("low", "high")
+#: What a map point's row holds (column ``outcome``): the 3DOF fired at the MKS solution
+#: crosses the target's altitude and its miss is measured; the MKS has no firing solution of
+#: the root there; the MKS has one, and the 3DOF fired at it never gets to the target's altitude.
+MEASURED, NO_SOLUTION, NEVER_THERE = OUTCOMES = (
+    "3DOF miss measured",
+    "no MKS solution",
+    "3DOF never reaches the target's altitude",
+)
 #: The columns of :func:`miss_map`, one row per intercept point.
 MAP_COLUMNS = (
     "map_bearing_deg",  # the bearing from the gun along which the points lie
@@ -50,15 +62,19 @@ MAP_COLUMNS = (
     "leaves_atmosphere",
     "mks_miss_m",  # the MKS solution's own residual at the point (fire_control's miss_m)
     "miss_3dof_m",  # the 3DOF flown at the MKS solution: its miss (NaN where it cannot)
+    "apogee_3dof_m",  # the 3DOF flown at the MKS solution: its apogee's altitude
+    "outcome",  # one of OUTCOMES
     "reason",  # why there is no 3DOF miss: no firing solution, or the 3DOF never got there
 )
 
 
-def _three_dof_misses(gun: Launch, targets, solutions, rtol: float) -> np.ndarray:
+def _three_dof_misses(
+    gun: Launch, targets, solutions, rtol: float
+) -> tuple[np.ndarray, np.ndarray]:
     """The 3DOF (the gun's atmosphere, drag law and Earth rotation) fired once at each firing
     solution, flown as one batch: the distance (m) from where it crosses its target's altitude
-    on the solution's branch to the target; NaN if it never gets there (within the 3DOF's
-    time)."""
+    on the solution's branch to the target, NaN if it never gets there (within the 3DOF's
+    time); and the altitude of its apogee (m)."""
     laid = Launches.from_launches([gun]).but(
         elevation_deg=np.array([s.elevation_deg for s in solutions]),
         bearing_deg=np.array([s.bearing_deg for s in solutions]),
@@ -74,7 +90,7 @@ def _three_dof_misses(gun: Launch, targets, solutions, rtol: float) -> np.ndarra
     # the 3DOF's Earth-fixed frame has its x axis toward longitude 0
     aims = np.array([t.earth_fixed_m() for t in targets])
     distance = np.linalg.norm(flight.end_position_m.T - aims, axis=1)
-    return np.where(flight.impact, distance, np.nan)
+    return np.where(flight.impact, distance, np.nan), flight.apogee_altitude_m
 
 
 def _points(
@@ -102,6 +118,7 @@ def _points(
                 latitude_deg=target.latitude_deg,
                 longitude_deg=target.longitude_deg,
                 leaves_atmosphere=None,
+                outcome=NO_SOLUTION,
                 reason=None,
             )
             rows.append(row)
@@ -122,11 +139,19 @@ def _points(
             flown.append((row, target, solution))
     if flown:
         chosen, aims, solved = zip(*flown, strict=True)
-        for row, miss in zip(chosen, _three_dof_misses(gun, aims, solved, rtol), strict=True):
-            row["miss_3dof_m"] = miss
+        misses, apogees = _three_dof_misses(gun, aims, solved, rtol)
+        for row, aim, miss, apogee in zip(chosen, aims, misses, apogees, strict=True):
+            row.update(miss_3dof_m=miss, apogee_3dof_m=apogee, outcome=MEASURED)
             if not math.isfinite(miss):
+                row["outcome"] = NEVER_THERE
                 row["reason"] = (
-                    "the 3DOF fired at the MKS solution never reaches the target's altitude"
+                    "the 3DOF fired at the MKS solution never reaches the target's altitude: "
+                    + (
+                        f"its apogee, {apogee / 1e3:.1f} km, is below the target's "
+                        f"{aim.altitude_m / 1e3:g} km"
+                        if apogee < aim.altitude_m
+                        else "it has not fallen back to it at the end of its flight"
+                    )
                 )
     return rows
 
@@ -146,8 +171,8 @@ def miss_map(
     distance of ``ranges_m`` (m, along ``bearing_deg`` from ``gun``) at every altitude of
     ``altitudes_m`` (m), met on the descending branch by the ``root`` ("low", "high" or
     "both") solution. A tidy table, one row per point and root (:data:`MAP_COLUMNS`), ranges
-    varying fastest; ``attrs`` keep the gun, bearing and root. ``client`` and ``progress`` go
-    to :func:`.sweeps.sweep`."""
+    varying fastest, each point's ``outcome`` one of :data:`OUTCOMES`; ``attrs`` keep the gun,
+    bearing and root. ``client`` and ``progress`` go to :func:`.sweeps.sweep`."""
     if not isinstance(gun, Launch):
         raise TypeError(
             f"gun must be a harp_analysis.models.launch.Launch; got {type(gun).__name__}"

@@ -8,6 +8,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.lines import Line2D
 
+from ...analyses.fire_control import envelope
 from ...engines import mks
 from ..plotting import FULL_WIDTH_IN, OKABE_ITO, new_figure
 
@@ -23,6 +24,11 @@ MISS_CLASSES = (
     (1e4, 1e5, "10 to 100 km", "^", "#4D4D4D"),
     (1e5, np.inf, "100 km or more", "D", OKABE_ITO["black"]),
 )
+#: A root the MKS claims and the 3DOF fired at it never brings to the target's altitude
+#: (:data:`envelope.NEVER_THERE`): worse than any miss, black as the largest; its marker and
+#: size (a star reads small at the others' size).
+NEVER_THERE_LOOK = ("*", OKABE_ITO["black"], 8.0)
+_SIZE = 5.5
 #: The firing elevation's contours (deg) drawn over each map.
 ELEVATION_STEP_DEG = 10.0
 _NONE: dict[str, Any] = dict(
@@ -54,11 +60,31 @@ def _elevation_contours(ax, rows: pd.DataFrame) -> None:
     ax.clabel(lines, fmt=lambda value: f"{value:.0f}°", fontsize=6.5, inline_spacing=2)
 
 
+def _marks(ax, x, y, chosen, valid, marker: str, shade: str, size: float = _SIZE) -> None:
+    """The points ``chosen`` in ``marker`` and ``shade``: filled and edged in black where
+    ``valid`` (beta within the MKS's validity), open in the shade where not."""
+    for filled in (True, False):
+        points = chosen & (valid == filled)
+        ax.plot(
+            x[points],
+            y[points],
+            marker=marker,
+            linestyle="none",
+            markersize=size,
+            color=shade,
+            mec=OKABE_ITO["black"] if filled else shade,
+            mew=0.6 if filled else 1.3,
+            mfc=shade if filled else "white",
+        )
+
+
 def draw_miss_map(maps: pd.DataFrame, bearings_deg, root: str, site: str):
     """Figures X.1 and X.2: one panel per bearing of :func:`envelope.miss_map`'s rows for
-    ``root`` ("low" or "high"), each intercept point marked by the class of the 3DOF's miss at
-    the MKS solution, open where beta exceeds the MKS's validity, a cross where there is no
-    solution, the firing elevation's contours over the points; ``site`` names the gun."""
+    ``root`` ("low" or "high"), each intercept point marked by its outcome
+    (:data:`envelope.OUTCOMES`): the class of the 3DOF's miss at the MKS solution, a star where
+    the 3DOF fired at it never reaches the target's altitude (with its legend entry only if a
+    point is one), open where beta exceeds the MKS's validity, a cross where there is no
+    solution; the firing elevation's contours over the points; ``site`` names the gun."""
     fig, axes = new_figure(
         1,
         len(bearings_deg),
@@ -67,28 +93,21 @@ def draw_miss_map(maps: pd.DataFrame, bearings_deg, root: str, site: str):
         sharey=True,
         layout="constrained",
     )
+    chosen = maps[maps.root == root]
     for ax, bearing in zip(np.atleast_1d(axes), bearings_deg):
-        rows = maps[(maps.root == root) & (maps.map_bearing_deg == bearing)]
+        # margins about the grid, which the contours' limits would otherwise hold at its edges,
+        # cutting the outer rows and columns of markers in half
+        ax.use_sticky_edges = False
+        rows = chosen[chosen.map_bearing_deg == bearing]
         x, y = rows.downrange_m / 1e3, rows.altitude_m / 1e3
         miss = rows.miss_3dof_m.to_numpy()
         valid = (rows.beta <= mks.BETA_VALIDITY_LIMIT).to_numpy()
-        missing = ~np.isfinite(miss)
-        ax.plot(x[missing], y[missing], **_NONE)
+        unsolved = (rows.outcome == envelope.NO_SOLUTION).to_numpy()
+        ax.plot(x[unsolved], y[unsolved], **_NONE)
         for low, high, _, marker, shade in MISS_CLASSES:
-            inside = (miss >= low) & (miss < high)
-            for filled in (True, False):
-                chosen = inside & (valid == filled)
-                ax.plot(
-                    x[chosen],
-                    y[chosen],
-                    marker=marker,
-                    linestyle="none",
-                    markersize=5.5,
-                    color=shade,
-                    mec=OKABE_ITO["black"] if filled else shade,
-                    mew=0.6 if filled else 1.3,
-                    mfc=shade if filled else "white",
-                )
+            _marks(ax, x, y, (miss >= low) & (miss < high), valid, marker, shade)
+        _marks(ax, x, y, (rows.outcome == envelope.NEVER_THERE).to_numpy(), valid,
+               *NEVER_THERE_LOOK)  # fmt: skip
         _elevation_contours(ax, rows)
         ax.set_title(f"bearing {bearing:03.0f}°T", fontsize=9)
         ax.set_xlabel("downrange (km)")
@@ -102,11 +121,16 @@ def draw_miss_map(maps: pd.DataFrame, bearings_deg, root: str, site: str):
             mec=OKABE_ITO["black"],
             mew=0.6,
             linestyle="none",
-            markersize=5.5,
+            markersize=_SIZE,
             label=f"3DOF miss {label}",
         )  # fmt: skip
         for _, _, label, m, s in MISS_CLASSES
     ]
+    if (chosen.outcome == envelope.NEVER_THERE).any():
+        marker, shade, size = NEVER_THERE_LOOK
+        handles.append(Line2D([], [], marker=marker, color=shade, mec=OKABE_ITO["black"], mew=0.6,
+                              linestyle="none", markersize=size,
+                              label=envelope.NEVER_THERE))  # fmt: skip
     handles += [
         Line2D(
             [],
@@ -116,7 +140,7 @@ def draw_miss_map(maps: pd.DataFrame, bearings_deg, root: str, site: str):
             mfc="white",
             mew=1.3,
             linestyle="none",
-            markersize=5.5,
+            markersize=_SIZE,
             label=r"open: $\beta > 0.25$ (beyond the MKS's validity)",
         ),  # fmt: skip
         Line2D([], [], label=f"no {root}-angle firing solution", **_NONE),

@@ -164,6 +164,7 @@ def error_figure(elevations_deg, *, lower: str | None = None, **variant):
         axes[1, 0].set_ylabel("3DOF cross range (m),\nnot in eq 4.7")
     axes[-1, 0].set_xlabel("range (km)")
     place_clear(fig, ax, labels)
+    plotting.keep_markers_whole(fig)  # none cut where the errors start, near 0, or leave the axis
     return fig
 
 
@@ -249,6 +250,7 @@ def draw_error_by_terms(launch: Launch) -> Figure:
         ax.set_xlabel("time (s)")
         ax.set_ylim(0, _TERMS_TOP_KM)
         ax.legend(loc=where, fontsize=8)
+    plotting.keep_markers_whole(fig)  # none cut on the time axis, where every error starts
     return fig
 
 
@@ -283,8 +285,7 @@ def _effort_figure(table, column: str, label: str, methods) -> Figure:
                 va="center", fontsize=11, annotation_clip=False,
                 bbox=dict(fc="white", ec="none", pad=0.5))  # fmt: skip
     ax.set_xlabel("apogee difference from the 6DOF (m)")
-    ax.set_ylabel(f"{label}\n(simulations: per trajectory to impact; MKS: per apogee)",
-                  fontsize=9)  # fmt: skip
+    ax.set_ylabel(f"{label}\n(simulations to impact, MKS at apogee)", fontsize=9)
     return fig
 
 
@@ -413,6 +414,7 @@ def draw_straight_lines(elevations_deg) -> Figure:
                Line2D([], [], color=OKABE_ITO["black"], ls=":")],
               ["3DOF", r"straight line, eq 3.16: $a = \theta\, r_0 \tan\phi_0$"],
               loc="lower right")  # fmt: skip
+    plotting.keep_markers_whole(fig)  # none cut at the gun, where every line starts
     return fig
 
 

@@ -174,6 +174,7 @@ def draw_swerve(flights: dict) -> Figure:
     bottom.set_ylabel("swerve (m), detail")
     bottom.set_xlabel("range (km)")
     _legend_above(top, ncols=4)
+    plotting.keep_markers_whole(fig)  # none cut where HP's MLT leaves the detail panel
     return fig
 
 

@@ -21,7 +21,7 @@ from ...analyses import rotating
 from ...engines.eci import LaunchCorrection
 from ...models.launch import Launch, baseline_chapter_4
 from ...models.trajectory import launch_frame
-from ..plotting import FULL_WIDTH_IN, OKABE_ITO, elevation_style, new_figure
+from ..plotting import FULL_WIDTH_IN, OKABE_ITO, elevation_style, keep_markers_whole, new_figure
 
 __all__ = [
     "VECTOR_STYLES",
@@ -311,4 +311,5 @@ def draw_distance_at_equal_time(latitude_deg: float, bearing_deg: float):
                loc="outside right upper")  # fmt: skip
     fig.canvas.draw()  # the layout fixes the axes' place, which the labels are placed in
     label_beside_curves(ax, lines, [f"{e:g}°" for e in elevations], ax.transData.transform(marks))
+    keep_markers_whole(fig, lines)  # none cut where the distances start, near 0, or leave the axis
     return fig
