@@ -8,12 +8,14 @@ defines a function of its own.
 
 import os
 import re
+from pathlib import Path
 
 import nbformat
 import pytest
 from nbclient import NotebookClient
 
 from harp_analysis.foundation import paths
+from harp_analysis.reporting import build
 
 NOTEBOOKS = sorted(paths.NOTEBOOKS_DIR.glob("*.ipynb"))
 CHANGED = """projectile = "LP"
@@ -112,3 +114,18 @@ def test_figures_go_to_a_scratch_folder_unless_asked(monkeypatch):
     assert paths.FIGURES_DIR != paths.COMMITTED_FIGURES_DIR
     monkeypatch.setenv("HARP_ANALYSIS_FIGURES_DIR", str(paths.COMMITTED_FIGURES_DIR))
     assert paths.FIGURES_DIR == paths.COMMITTED_FIGURES_DIR
+
+
+def test_a_relative_figures_folder_is_the_caller_s_not_the_notebook_s(tmp_path, monkeypatch):
+    """`make docs` names its scratch folder relative to the checkout, while the kernel runs from
+    the notebook's folder: the figures go to the folder named, never to one under notebooks/."""
+    folder = tmp_path / "notebooks"
+    folder.mkdir()
+    saving = "from harp_analysis.foundation import paths\n(paths.FIGURES_DIR / 'saved').touch()"
+    notebook = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(saving)])
+    nbformat.write(notebook, folder / "n.ipynb")
+    (tmp_path / "scratch").mkdir()
+    monkeypatch.chdir(tmp_path)
+    build.execute_notebook(folder / "n.ipynb", Path("scratch"))
+    assert (tmp_path / "scratch" / "saved").is_file()
+    assert not (folder / "scratch").exists()
