@@ -2,10 +2,11 @@
 
 nbmake executes every notebook as committed (``make test``); here notebook 04 runs with changed
 parameters, and a last cell checks that the 3DOF, 6DOF, MLT and MKS all flew the changed launch
-and that the headings name it. No notebook silences the models' validity warnings, draws, or
-defines a function of its own.
+and that the headings name it. No notebook silences the models' validity warnings, draws,
+defines a function of its own, or shows the path it saved a figure to.
 """
 
+import ast
 import os
 import re
 from pathlib import Path
@@ -107,6 +108,22 @@ def test_no_notebook_draws_or_defines_functions(path):
         if cell.cell_type == "code":
             assert not DRAWING.search(cell.source), cell.source
             assert not DEFINING.search(cell.source), cell.source
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
+def test_no_cell_shows_the_path_it_saved_to(path):
+    """A cell that ends by saving a figure or a table ends with ";": its page shows the figure,
+    not the returned path of the file on the machine that ran it."""
+    for cell in nbformat.read(path, as_version=4).cells:
+        if cell.cell_type != "code" or not cell.source.strip():
+            continue
+        last = ast.parse(cell.source).body[-1]
+        saving = (
+            isinstance(last, ast.Expr)
+            and isinstance(last.value, ast.Call)
+            and getattr(last.value.func, "id", None) in ("save_figure", "save_table")
+        )
+        assert not saving or cell.source.rstrip().endswith(";"), cell.source
 
 
 def test_figures_go_to_a_scratch_folder_unless_asked(monkeypatch):
