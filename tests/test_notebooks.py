@@ -9,6 +9,7 @@ defines a function of its own, or shows the path it saved a figure to.
 import ast
 import os
 import re
+import warnings
 from pathlib import Path
 
 import nbformat
@@ -16,7 +17,9 @@ import pytest
 from nbclient import NotebookClient
 
 from harp_analysis.foundation import paths
-from harp_analysis.reporting import build
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models.trajectory import TruncatedFlightWarning
+from harp_analysis.reporting import build, notebook
 
 NOTEBOOKS = sorted(paths.NOTEBOOKS_DIR.glob("*.ipynb"))
 CHANGED = """projectile = "LP"
@@ -88,6 +91,43 @@ def test_no_notebook_silences_warnings(path):
     silencing = re.compile(r"(simplefilter|filterwarnings)\(\s*[\"']ignore")
     for cell in nbformat.read(path, as_version=4).cells:
         assert cell.cell_type != "code" or not silencing.search(cell.source), cell.source
+
+
+@pytest.mark.parametrize("path", [p for p in NOTEBOOKS if p.name != "00_explorer.ipynb"], ids=str)
+def test_each_chapter_shows_validity_warnings_as_sentences(path):
+    calls = [
+        cell
+        for cell in nbformat.read(path, as_version=4).cells
+        if cell.cell_type == "code" and re.search(r"^show_validity_warnings\(\)", cell.source, re.M)
+    ]
+    assert len(calls) == 1
+
+
+def test_a_validity_warning_is_shown_once_as_a_sentence(capsys):
+    """Without a path or a line of code, however often it is given and whatever filters the
+    engines change in between; other warnings as Python shows them."""
+
+    def warn(message, category=ModelValidityWarning):
+        warnings.warn(message, category, stacklevel=2)
+
+    with warnings.catch_warnings(record=True) as others:
+        notebook.show_validity_warnings()
+        for _ in range(2):
+            warn("MKS beta = 0.3 > 0.25: the text finds\n it inaccurate")
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ModelValidityWarning)
+                warn("kept quiet by an engine")
+        warn("the 3DOF flight did not return to the ground.", TruncatedFlightWarning)
+        notebook.show_validity_warnings()  # again: the same display, the count afresh
+        warn("the MKS ignores the wind")
+        warn("the MKS ignores the wind")
+        warn("something else", UserWarning)
+    assert capsys.readouterr().err.splitlines() == [
+        "Model validity: MKS beta = 0.3 > 0.25: the text finds it inaccurate.",
+        "Model validity: the 3DOF flight did not return to the ground.",
+        "Model validity: the MKS ignores the wind.",
+    ]
+    assert [str(w.message) for w in others] == ["something else"]
 
 
 #: What drawing looks like in a cell: matplotlib itself, or an axes' or the house style's calls.
