@@ -133,7 +133,7 @@ _BUILTINS = (
     "ndarray", "Exception", "ValueError", "TypeError", "RuntimeError", "UserWarning",
     "Warning", "NamedTuple", "Enum", "P", "R", "T", "Literal", "Self", "ParamSpec",
     "TypeVar", "Client", "Future", "Lock", "ModuleType",
-    "optional", "array_like",  # numpy-style "float, optional", "array_like"
+    "optional", "array_like", "sequence",  # numpy-style "float, optional", "sequence of int"
 )  # fmt: skip
 nitpick_ignore_regex = [
     (
