@@ -4,9 +4,12 @@ values, so no trajectory is flown), the links they make, the check of a built si
 resources, and the cache keys. `make docs` builds the real site; `make check-docs` opens it in a
 browser (tests/browser/test_docs_site.py)."""
 
+import ast
+import importlib
 import inspect
 import json
 import re
+import typing
 
 import pytest
 
@@ -124,23 +127,91 @@ def test_the_provenance_page_is_the_data_s_readme_with_its_files(pages):
     assert "](radar.md)" in text
 
 
-@pytest.mark.parametrize(
-    "name",
-    [
-        name
-        for name in harp_analysis.__all__
-        if name != "__version__" and inspect.isfunction(getattr(harp_analysis, name))
-    ],
-)
-def test_each_public_entry_point_documents_its_parameters_and_returns(name):
-    doc = inspect.getdoc(getattr(harp_analysis, name))
-    assert "Parameters\n----------" in doc and "Returns\n-------" in doc, name
-    for parameter in inspect.signature(getattr(harp_analysis, name)).parameters.values():
+class _Usage(ast.NodeVisitor):
+    """What a README example calls of the package, in the order it is written: each name it
+    imports, and what each name it assigns holds (a class stands for its instances, and a call
+    of a function for what the function is annotated to return), so that ``launch.but(...)``
+    and ``solution.apogee_altitude()`` are found as Launch.but and
+    ModifiedKeplerSolution.apogee_altitude."""
+
+    def __init__(self) -> None:
+        self.names: dict[str, object] = {}
+        self.called: list[object] = []
+
+    def visit_ImportFrom(self, node: ast.ImportFrom) -> None:
+        for alias in node.names:
+            module = importlib.import_module(node.module)
+            value = getattr(module, alias.name, None)
+            if value is None:
+                value = importlib.import_module(f"{node.module}.{alias.name}")
+            self.names[alias.asname or alias.name] = value
+
+    def value(self, node: ast.expr) -> object:
+        if isinstance(node, ast.Name):
+            return self.names.get(node.id)
+        if isinstance(node, ast.Attribute):
+            return getattr(self.value(node.value), node.attr, None)
+        if isinstance(node, ast.Call):
+            called = self.value(node.func)
+            if inspect.isclass(called):
+                return called
+            try:
+                return typing.get_type_hints(inspect.unwrap(called)).get("return")
+            except TypeError:  # not a function of the package
+                return None
+        return None
+
+    def visit_Assign(self, node: ast.Assign) -> None:
+        self.generic_visit(node)
+        for target in node.targets:
+            if isinstance(target, ast.Name):
+                self.names[target.id] = self.value(node.value)
+
+    def visit_Call(self, node: ast.Call) -> None:
+        self.generic_visit(node)
+        self.called.append(self.value(node.func))
+
+
+def _entry_points() -> dict[str, object]:
+    """The package's public entry points: the functions and classes of ``harp_analysis.__all__``
+    and every function, method and class README's "Using the package" calls, by full name."""
+    readme = (paths.ROOT / "README.md").read_text()
+    section = readme.split("\n## Using the package\n")[1].split("\n## ")[0]
+    usage = _Usage()
+    for block in re.findall(r"```python\n(.*?)```", section, re.S):
+        usage.visit(ast.parse(block))
+    curated = [getattr(harp_analysis, name) for name in harp_analysis.__all__[1:]]
+    found = {}
+    for value in [*curated, *usage.called]:
+        value = inspect.unwrap(getattr(value, "__func__", value))
+        if not (inspect.isfunction(value) or inspect.isclass(value)):
+            continue  # a constant of the curated names (HP), or a call of another package
+        warning = inspect.isclass(value) and issubclass(value, Warning)
+        if value.__module__.startswith("harp_analysis") and not warning:
+            found[f"{value.__module__}.{value.__qualname__}"] = value
+    return found
+
+
+ENTRY_POINTS = _entry_points()
+
+
+@pytest.mark.parametrize(("name", "entry"), ENTRY_POINTS.items(), ids=list(ENTRY_POINTS))
+def test_each_public_entry_point_documents_its_parameters_and_returns(name, entry):
+    """Every parameter under Parameters (numpy style, names grouped "a, b : float" or not), and
+    Returns unless it returns nothing; a class documents its constructor's parameters."""
+    doc = inspect.getdoc(entry) or ""
+    signature = inspect.signature(entry)
+    parameters = [p for p in signature.parameters.values() if p.name not in ("self", "cls")]
+    if parameters:
+        assert "Parameters\n----------" in doc, name
+    returns = signature.return_annotation not in ("None", None)
+    if inspect.isfunction(entry) and returns:
+        assert "Returns\n-------" in doc, name
+    documented = re.findall(r"^(\**\w+(?:, \**\w+)*)(?: :|$)", doc, re.M)
+    listed = {word for line in documented for word in line.split(", ")}
+    for parameter in parameters:
         shown = f"**{parameter.name}" if parameter.kind is parameter.VAR_KEYWORD else parameter.name
-        assert re.search(rf"^{re.escape(shown)} :|^{re.escape(shown)}$", doc, re.M), (
-            name,
-            parameter.name,
-        )
+        assert shown in listed, (name, parameter.name)
 
 
 # --- the check of a built site ----------------------------------------------------------------
