@@ -104,8 +104,10 @@ def test_the_ledger_page_has_a_target_per_row_and_its_filters_columns(pages):
     rows = _rows()
     assert text.count("(claim-") == len(rows) == len({row.id for row in rows})
     assert ":class: ledger-table" in text
-    for heading in ("chapter", "verdict", "computed by"):
+    for heading in ("chapter", "verdict", "computed by", "explanation"):
         assert f"  - {heading}\n" in text
+    widths = [width for _, width in site.LEDGER_COLUMNS]
+    assert f":widths: {' '.join(map(str, widths))}\n" in text and sum(widths) == 100
 
 
 def test_the_landing_summary_counts_every_figure(pages):

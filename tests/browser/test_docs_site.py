@@ -211,9 +211,10 @@ def leading_number(text: str) -> float:
 
 
 def visible_rows(driver) -> list[list[str]]:
+    """The cells of the ledger's rows shown, each without the explanation beneath it."""
     return driver.execute_script(
         "return [...document.querySelectorAll('table.ledger-table tbody tr')]"
-        ".filter(row => !row.hidden)"
+        ".filter(row => !row.hidden && !row.classList.contains('ledger-explanation'))"
         ".map(row => [...row.cells].map(cell => cell.textContent.trim()));"
     )
 
@@ -248,3 +249,56 @@ def test_the_chapters_render_their_figures_and_math(browser_installed, browser, 
     wait(browser, lambda d: not images_rendered(d), "the explorer's screenshot did not render")
     assert browser.find_elements(By.CSS_SELECTOR, "article img")
     shoot(browser, "explorer-page")
+
+
+# --- the site at 1400 px (issue 34) -------------------------------------------------------------
+
+
+def test_the_ledger_shows_every_row_s_explanation_in_the_window(
+    browser_installed, browser, served, shoot
+):
+    """Each row's explanation, the reason behind its verdict, lies within the window's width,
+    beneath its row, and stays with it when the rows are filtered and sorted; nothing on the
+    page scrolls sideways."""
+    claims = ledger.load_claims()
+    browser.get(served + "ledger.html")
+    wait(browser, lambda d: d.find_elements(By.ID, "ledger-count"), "no ledger controls")
+    assert browser.execute_script("return window.innerWidth") == 1400
+
+    def explanations() -> list[dict]:
+        return browser.execute_script(
+            "const width = document.documentElement.clientWidth;"
+            "return [...document.querySelectorAll('table.ledger-table tbody tr')]"
+            ".filter(row => !row.hidden && !row.classList.contains('ledger-explanation'))"
+            ".map(row => { const below = row.nextElementSibling;"
+            "  const cell = below && below.classList.contains('ledger-explanation')"
+            "    && !below.hidden ? below.cells[0] : null;"
+            "  const box = cell ? cell.getBoundingClientRect() : null;"
+            "  return {id: row.cells[0].textContent.trim(), text: cell ? cell.innerText : '',"
+            "    inside: !!box && box.left >= 0 && box.right <= width && box.width > width / 2};"
+            "});"
+        )
+
+    shown = explanations()
+    assert len(shown) == len(claims)
+    assert [row["id"] for row in shown if not row["inside"]] == []
+    explained = {claim.id for claim in claims if claim.verdict in ("close", "does not reproduce")}
+    assert all(row["text"].strip() for row in shown if row["id"] in explained)
+    sideways = browser.execute_script(
+        "const box = document.querySelector('table.ledger-table')"
+        ".closest('.pst-scrollable-table-container');"
+        "return [document.documentElement.scrollWidth - document.documentElement.clientWidth,"
+        " box.scrollWidth - box.clientWidth];"
+    )
+    assert sideways == [0, 0]
+    first = browser.find_element(By.CSS_SELECTOR, "tr.ledger-explanation")
+    click(browser, first)
+    shoot(browser, "ledger-explanations")
+
+    Select(browser.find_element(By.ID, "ledger-filter-verdict")).select_by_value("close")
+    click(browser, browser.find_element(By.XPATH, "//th[normalize-space()='computed']"))
+    after = explanations()
+    assert len(after) == sum(claim.verdict == "close" for claim in claims)
+    assert all(row["inside"] and row["text"].strip() for row in after)
+    before = {row["id"]: row["text"] for row in shown}
+    assert all(before[row["id"]] == row["text"] for row in after)  # each with its own row

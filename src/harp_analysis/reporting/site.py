@@ -67,6 +67,7 @@ __all__ = [
     "main",
     "CHAPTER_NOTEBOOKS",
     "EXPLORER_NOTEBOOK",
+    "LEDGER_COLUMNS",
 ]
 
 #: The explorer's notebook: a Voila app, shown by a screenshot and never run by the site.
@@ -82,6 +83,22 @@ SHOWN = {
     "not reproducible": "not reproducible",
     "extension": "drawn, extension",
 }
+#: The ledger page's columns and their shares of its width (%): every row reads whole in the
+#: window, the explanation (the reason behind a verdict) the widest.
+LEDGER_COLUMNS = (
+    ("id", 9),
+    ("chapter", 5),
+    ("source", 6),
+    ("statement", 14),
+    ("text", 5),
+    ("computed", 6),
+    ("unit", 4),
+    ("tolerance", 6),
+    ("verdict", 7),
+    ("figures", 5),
+    ("computed by", 9),
+    ("explanation", 24),
+)
 #: Folders of docs/ that stay there (read by sphinx-build -c docs), and files never copied.
 _CONFIGURATION = {"conf.py", "_templates", "_static", "__pycache__"}
 
@@ -494,19 +511,10 @@ def _ledger_page(rows: list[LedgerRow], entries: dict[str, RegistryEntry]) -> st
         ":::{list-table}",
         ":header-rows: 1",
         ":class: ledger-table",
+        f":widths: {' '.join(str(width) for _, width in LEDGER_COLUMNS)}",
         "",
-        "* - id",
-        "  - chapter",
-        "  - source",
-        "  - statement",
-        "  - text",
-        "  - computed",
-        "  - unit",
-        "  - tolerance",
-        "  - verdict",
-        "  - figures",
-        "  - computed by",
-        "  - explanation",
+        f"* - {LEDGER_COLUMNS[0][0]}",
+        *(f"  - {name}" for name, _ in LEDGER_COLUMNS[1:]),
     ]
     for row in rows:
         figures = ", ".join(_figure_link(number, entries) for number in row.figures)
