@@ -26,7 +26,9 @@ from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import Select, WebDriverWait
 
 import harp_analysis
+from harp_analysis.foundation import paths
 from harp_analysis.reporting import ledger, registry
+from harp_analysis.reporting.site import CHAPTER_NOTEBOOKS, EXPLORER_NOTEBOOK
 
 pytestmark = [pytest.mark.browser, pytest.mark.docs]
 
@@ -302,3 +304,27 @@ def test_the_ledger_shows_every_row_s_explanation_in_the_window(
     assert all(row["inside"] and row["text"].strip() for row in after)
     before = {row["id"]: row["text"] for row in shown}
     assert all(before[row["id"]] == row["text"] for row in after)  # each with its own row
+
+
+#: Text of the machine a notebook ran on, or of Python's raw display of a warning or an object.
+MACHINE_TEXT = re.compile(
+    rf"PosixPath\(|{re.escape(str(paths.ROOT))}|/work/|/tmp/|Warning:|Traceback|\.py:\d+"
+)
+
+
+def test_the_chapters_show_no_paths_reprs_or_raw_warnings(browser_installed, browser, served):
+    """A figure saved shows the figure, never the path it was saved to; a validity warning is
+    a sentence, never the build machine's file and line (notebook 03 gives two)."""
+    for notebook in sorted(paths.NOTEBOOKS_DIR.glob(CHAPTER_NOTEBOOKS)):
+        if notebook.name == EXPLORER_NOTEBOOK:
+            continue
+        browser.get(served + f"chapters/{notebook.stem}.html")
+        text = wait(browser, lambda d: d.find_element(By.TAG_NAME, "article"), "no page").text
+        assert not MACHINE_TEXT.findall(text), (notebook.name, MACHINE_TEXT.findall(text))
+        if notebook.name.startswith("03") and os.environ.get("HARP_ANALYSIS_DOCS_EXECUTE") != "0":
+            said = [e.text for e in browser.find_elements(By.CSS_SELECTOR, ".output.stderr")]
+            assert said and all(line.startswith("Model validity: ") for line in said), said
+            assert all(
+                e.size["width"] > 300
+                for e in browser.find_elements(By.CSS_SELECTOR, ".output.stderr pre")
+            )
