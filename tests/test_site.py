@@ -85,10 +85,34 @@ def test_every_registry_entry_has_its_page_with_the_text_s_caption(pages):
     for entry in registry.load_registry():
         page = (pages / "gallery" / f"{site._slug(entry.number)}.md").read_text()
         assert site._md(entry.title) in page
-        assert f"**{site.SHOWN[entry.status]}**" in page
+        assert f"Status: {site._badge(entry.status)}" in page
         if entry.status in registry.DRAWN and entry.file.endswith(".png"):
-            assert f"../figures/{entry.file}" in page
+            assert f"../figures/{entry.file}\n" in page and ":width: 100%" in page  # linked
             assert f"FIG={entry.number}" in page  # the command that regenerates it
+
+
+def test_the_gallery_shows_a_thumbnail_of_each_drawn_figure_and_a_badge_of_each_status(pages):
+    rows = (pages / "gallery" / "index.md").read_text().split("\n* - ")
+    for entry in registry.load_registry():
+        slug = site._slug(entry.number)
+        (row,) = [row for row in rows if f"{{doc}}`{entry.label} <{slug}>`" in row]
+        assert site._badge(entry.status) in row
+        if entry.status in registry.DRAWN and entry.file.endswith(".png"):
+            thumbnail = site._thumbnail_name(entry.file)
+            assert f"[![{entry.label}](thumbnails/{thumbnail})]({slug}.md)" in row
+
+
+def test_a_thumbnail_is_small_and_made_once(tmp_path):
+    from PIL import Image
+
+    figure = next(paths.COMMITTED_FIGURES_DIR.glob("*.png"))
+    thumbnail = site._thumbnail(figure, tmp_path)
+    with Image.open(thumbnail) as image:
+        assert image.width == site.THUMBNAIL_WIDTH_PX
+    assert thumbnail.stat().st_size < figure.stat().st_size / 5
+    made = thumbnail.stat().st_mtime_ns
+    assert site._thumbnail(figure, tmp_path) == thumbnail
+    assert thumbnail.stat().st_mtime_ns == made and len(list(tmp_path.iterdir())) == 1
 
 
 def test_a_figure_page_links_each_of_its_rows_and_the_function_computing_it(pages):

@@ -27,7 +27,7 @@ from selenium.webdriver.support.ui import Select, WebDriverWait
 
 import harp_analysis
 from harp_analysis.foundation import paths
-from harp_analysis.reporting import ledger, registry
+from harp_analysis.reporting import ledger, registry, site
 from harp_analysis.reporting.site import CHAPTER_NOTEBOOKS, EXPLORER_NOTEBOOK
 
 pytestmark = [pytest.mark.browser, pytest.mark.docs]
@@ -169,11 +169,20 @@ def test_a_reader_goes_from_a_figure_to_its_rows_the_function_and_its_equation(
     shoot(browser, "api-entry")
 
 
-def test_the_public_entry_points_show_parameters_and_returns(browser_installed, browser, served):
-    browser.get(served + "api/harp_analysis.engines.threedof.html")
+@pytest.mark.parametrize(
+    ("module", "function"),
+    [
+        ("harp_analysis.engines.threedof", "simulate_3dof"),
+        ("harp_analysis.engines.mks", "for_launch"),
+    ],
+)
+def test_the_public_entry_points_show_parameters_and_returns(
+    browser_installed, browser, served, module, function
+):
+    browser.get(served + f"api/{module}.html")
     text = browser.execute_script(
-        "return document.getElementById('harp_analysis.engines.threedof.simulate_3dof')"
-        ".parentElement.innerText;"
+        "return document.getElementById(arguments[0]).parentElement.innerText;",
+        f"{module}.{function}",
     )
     assert "Parameters" in text and "Returns" in text and "launch" in text
 
@@ -328,3 +337,70 @@ def test_the_chapters_show_no_paths_reprs_or_raw_warnings(browser_installed, bro
                 e.size["width"] > 300
                 for e in browser.find_elements(By.CSS_SELECTOR, ".output.stderr pre")
             )
+
+
+def test_a_figure_page_shows_the_figure_at_the_page_s_width_and_the_text_s_caption(
+    browser_installed, browser, served, shoot
+):
+    entry, _ = the_figure_and_its_row()
+    browser.get(served + f"gallery/{site._slug(entry.number)}.html")
+    wait(browser, lambda d: not images_rendered(d), "the figure did not render")
+    measured = browser.execute_script(
+        "const img = document.querySelector('.project-side img');"
+        "const article = document.querySelector('article');"
+        "const style = getComputedStyle(article);"
+        "const content = article.clientWidth - parseFloat(style.paddingLeft)"
+        "  - parseFloat(style.paddingRight);"
+        "const caption = document.querySelector('.text-caption');"
+        "return {image: img.getBoundingClientRect().width, content: content,"
+        "  natural: img.naturalWidth, link: img.closest('a') ? img.closest('a').href : null,"
+        "  caption: caption.getBoundingClientRect().width,"
+        "  font: parseFloat(getComputedStyle(caption).fontSize)};"
+    )
+    assert measured["content"] > 800, measured  # no contents column beside it at 1400 px
+    assert measured["image"] >= 0.95 * measured["content"], measured
+    assert measured["caption"] >= 0.5 * measured["content"] and measured["font"] >= 14, measured
+    assert measured["link"] and unquote(measured["link"]).endswith(entry.file), measured
+    shoot(browser, "figure-page")
+    browser.get(measured["link"])  # the full size
+    width = browser.execute_script("return document.images[0].naturalWidth")
+    assert width == measured["natural"] > measured["image"]
+
+
+def test_the_gallery_shows_a_thumbnail_and_a_status_badge_of_each_figure(
+    browser_installed, browser, served, shoot
+):
+    browser.get(served + "gallery/index.html")
+    wait(browser, lambda d: not images_rendered(d), "a thumbnail did not render")
+    rows = browser.execute_script(
+        "return [...document.querySelectorAll('table.gallery-table tbody tr')].map(row => {"
+        "  const img = row.querySelector('img'), badge = row.querySelector('.status-badge');"
+        "  return {label: row.cells[0].innerText.trim().split('\\n').pop(),"
+        "    img: img ? {src: img.src, natural: img.naturalWidth, shown: img.width,"
+        "      link: img.closest('a') ? img.closest('a').href : null} : null,"
+        "    badge: badge ? badge.innerText.trim() : null,"
+        "    colour: badge ? getComputedStyle(badge).borderTopColor : null};"
+        "});"
+    )
+    plain = browser.execute_script(  # a badge's colour without a status
+        "const span = document.createElement('span'); span.className = 'status-badge';"
+        "document.body.append(span); const colour = getComputedStyle(span).borderTopColor;"
+        "span.remove(); return colour;"
+    )
+    by_label = {row["label"]: row for row in rows}
+    entries = list(registry.load_registry())
+    assert len(rows) == len(entries)
+    colours = {}
+    for entry in entries:
+        row = by_label[entry.label]
+        assert row["badge"] == site.SHOWN[entry.status], row
+        colours.setdefault(entry.status, set()).add(row["colour"])
+        if entry.status in registry.DRAWN and entry.file.endswith(".png"):
+            image = row["img"]
+            assert image and 0 < image["shown"] <= image["natural"], row
+            assert image["natural"] == site.THUMBNAIL_WIDTH_PX, row  # a small copy, not 300 dpi
+            assert image["link"].endswith(f"{site._slug(entry.number)}.html"), row
+    assert all(len(found) == 1 for found in colours.values())  # one colour per status
+    distinct = {colour for found in colours.values() for colour in found}
+    assert len(distinct) == len(colours) and plain not in distinct, (colours, plain)
+    shoot(browser, "gallery")
