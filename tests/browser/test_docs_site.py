@@ -404,3 +404,31 @@ def test_the_gallery_shows_a_thumbnail_and_a_status_badge_of_each_figure(
     distinct = {colour for found in colours.values() for colour in found}
     assert len(distinct) == len(colours) and plain not in distinct, (colours, plain)
     shoot(browser, "gallery")
+
+
+def test_the_navigation_never_breaks_a_name_mid_word(browser_installed, browser, served, shoot):
+    """An API page of a deep module: each entry of the navigation on one line, and the
+    heading's dotted name broken only after a dot."""
+    module = "harp_analysis.reporting.figures.reference_trajectories"
+    browser.get(served + f"api/{module}.html")
+    wait(browser, lambda d: d.find_elements(By.CSS_SELECTOR, "nav.bd-docs-nav a"), "no navigation")
+    lines = browser.execute_script(
+        "const lines = node => { const range = document.createRange();"
+        "  range.selectNodeContents(node);"
+        "  return new Set([...range.getClientRects()].map(r => Math.round(r.top))).size; };"
+        "const texts = element => { const walk = document.createTreeWalker(element, 4);"
+        "  const found = []; while (walk.nextNode()) if (walk.currentNode.textContent.trim())"
+        "  found.push(walk.currentNode); return found; };"
+        "const heading = document.querySelector('article h1');"
+        "return {nav: [...document.querySelectorAll('nav.bd-docs-nav a')]"
+        "    .filter(a => a.offsetParent && !/\\s/.test(a.textContent.trim()))"
+        "    .map(a => [a.textContent.trim(), lines(a)]),"
+        "  heading: heading.textContent.replace('#', '').trim(),"
+        "  overflow: heading.scrollWidth - heading.clientWidth,"
+        "  parts: texts(heading).map(node => [node.textContent, lines(node)])};"
+    )
+    assert len(lines["nav"]) > 10
+    assert [name for name, count in lines["nav"] if count != 1] == []
+    assert lines["heading"] == module and lines["overflow"] <= 0
+    assert [part for part, count in lines["parts"] if count != 1] == []
+    shoot(browser, "api-navigation")
