@@ -5,8 +5,15 @@ ledger row about the figure, and from the row the API entry of the function that
 whose docstring cites the dissertation's equation; it checks that the figure and the other
 images render, that the ledger filters and sorts, that the search finds a function, that the
 site reports the package's version and that MathJax, served by the site itself, typesets.
-A screenshot of each step goes to $HARP_ANALYSIS_SCREENSHOT_DIR, else to the test's temporary
-folder.
+
+In the 1400 px window (issue 34) it checks what a reader sees: every ledger row's explanation
+within the window's width, beneath its row, after filtering and sorting too; no chapter showing
+an object's repr, a path of the build machine or a raw warning (a validity warning is a
+sentence); a figure's page showing the figure at the page's width, linked to its full size,
+with the text's caption; the gallery's thumbnail and coloured status badge of each figure;
+the navigation and the API pages' headings never breaking a module's name mid-word; and
+Parameters and Returns on the public entry points. A screenshot of each step goes to
+$HARP_ANALYSIS_SCREENSHOT_DIR, else to the test's temporary folder.
 
 Runs only where HARP_ANALYSIS_DOCS_SITE names the built site (`make check-docs` sets it after
 building); skipped without chromium and chromium-driver unless HARP_ANALYSIS_REQUIRE_BROWSER=1,
