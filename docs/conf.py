@@ -133,7 +133,7 @@ _BUILTINS = (
     "ndarray", "Exception", "ValueError", "TypeError", "RuntimeError", "UserWarning",
     "Warning", "NamedTuple", "Enum", "P", "R", "T", "Literal", "Self", "ParamSpec",
     "TypeVar", "Client", "Future", "Lock", "ModuleType",
-    "optional", "array_like",  # numpy-style "float, optional", "array_like"
+    "optional", "array_like", "sequence",  # numpy-style "float, optional", "sequence of int"
 )  # fmt: skip
 nitpick_ignore_regex = [
     (
@@ -365,6 +365,29 @@ def _resolve(app, env, node, contnode):
     )
 
 
+def _api_names(app, doctree):
+    """An API page's title is its module's dotted name, up to 54 characters, wider than the
+    sidebar and than the heading's line: the navigation and the breadcrumbs show its last part
+    ("verification" under "fire_control", where the tree says the rest), and the heading the
+    whole name with a line break allowed after each dot (<wbr>), so that neither is ever broken
+    mid-word. Runs after Sphinx has collected the page's title and contents."""
+    from docutils import nodes
+
+    docname = app.env.docname
+    module = docname.removeprefix("api/")
+    if not docname.startswith("api/harp_analysis."):
+        return
+    short = module.rpartition(".")[2]
+    app.env.titles[docname] = nodes.title("", short)
+    entry = next(app.env.tocs[docname].findall(nodes.reference))
+    entry.children[:] = [nodes.Text(short)]
+    heading = next(doctree.findall(nodes.title))
+    parts = [nodes.Text(part + ".") for part in module.split(".")]
+    parts[-1] = nodes.Text(short)
+    wbr = nodes.raw("", "<wbr>", format="html")
+    heading.children[:] = [node for part in parts for node in (part, wbr.deepcopy())][:-1]
+
+
 def _layer(name: str) -> int:
     """The layer of a module of the package, lowest first (pyproject's import-linter layers)."""
     for depth, layer in enumerate(("foundation", "models", "engines", "analyses", "reporting")):
@@ -410,3 +433,4 @@ def setup(app):
     app.connect("autodoc-process-docstring", _numpy_sections)
     app.connect("autodoc-skip-member", _skip_third_party)
     app.connect("missing-reference", _resolve)
+    app.connect("doctree-read", _api_names, priority=900)  # after the title and toc collectors

@@ -2,18 +2,24 @@
 
 nbmake executes every notebook as committed (``make test``); here notebook 04 runs with changed
 parameters, and a last cell checks that the 3DOF, 6DOF, MLT and MKS all flew the changed launch
-and that the headings name it. No notebook silences the models' validity warnings, draws, or
-defines a function of its own.
+and that the headings name it. No notebook silences the models' validity warnings, draws,
+defines a function of its own, or shows the path it saved a figure to.
 """
 
+import ast
 import os
 import re
+import warnings
+from pathlib import Path
 
 import nbformat
 import pytest
 from nbclient import NotebookClient
 
 from harp_analysis.foundation import paths
+from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models.trajectory import TruncatedFlightWarning
+from harp_analysis.reporting import build, notebook
 
 NOTEBOOKS = sorted(paths.NOTEBOOKS_DIR.glob("*.ipynb"))
 CHANGED = """projectile = "LP"
@@ -87,6 +93,43 @@ def test_no_notebook_silences_warnings(path):
         assert cell.cell_type != "code" or not silencing.search(cell.source), cell.source
 
 
+@pytest.mark.parametrize("path", [p for p in NOTEBOOKS if p.name != "00_explorer.ipynb"], ids=str)
+def test_each_chapter_shows_validity_warnings_as_sentences(path):
+    calls = [
+        cell
+        for cell in nbformat.read(path, as_version=4).cells
+        if cell.cell_type == "code" and re.search(r"^show_validity_warnings\(\)", cell.source, re.M)
+    ]
+    assert len(calls) == 1
+
+
+def test_a_validity_warning_is_shown_once_as_a_sentence(capsys):
+    """Without a path or a line of code, however often it is given and whatever filters the
+    engines change in between; other warnings as Python shows them."""
+
+    def warn(message, category=ModelValidityWarning):
+        warnings.warn(message, category, stacklevel=2)
+
+    with warnings.catch_warnings(record=True) as others:
+        notebook.show_validity_warnings()
+        for _ in range(2):
+            warn("MKS beta = 0.3 > 0.25: the text finds\n it inaccurate")
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ModelValidityWarning)
+                warn("kept quiet by an engine")
+        warn("the 3DOF flight did not return to the ground.", TruncatedFlightWarning)
+        notebook.show_validity_warnings()  # again: the same display, the count afresh
+        warn("the MKS ignores the wind")
+        warn("the MKS ignores the wind")
+        warn("something else", UserWarning)
+    assert capsys.readouterr().err.splitlines() == [
+        "Model validity: MKS beta = 0.3 > 0.25: the text finds it inaccurate.",
+        "Model validity: the 3DOF flight did not return to the ground.",
+        "Model validity: the MKS ignores the wind.",
+    ]
+    assert [str(w.message) for w in others] == ["something else"]
+
+
 #: What drawing looks like in a cell: matplotlib itself, or an axes' or the house style's calls.
 DRAWING = re.compile(
     r"\bmatplotlib\b|\bplt\.|\bnew_figure\(|"
@@ -107,8 +150,39 @@ def test_no_notebook_draws_or_defines_functions(path):
             assert not DEFINING.search(cell.source), cell.source
 
 
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
+def test_no_cell_shows_the_path_it_saved_to(path):
+    """A cell that ends by saving a figure or a table ends with ";": its page shows the figure,
+    not the returned path of the file on the machine that ran it."""
+    for cell in nbformat.read(path, as_version=4).cells:
+        if cell.cell_type != "code" or not cell.source.strip():
+            continue
+        last = ast.parse(cell.source).body[-1]
+        saving = (
+            isinstance(last, ast.Expr)
+            and isinstance(last.value, ast.Call)
+            and getattr(last.value.func, "id", None) in ("save_figure", "save_table")
+        )
+        assert not saving or cell.source.rstrip().endswith(";"), cell.source
+
+
 def test_figures_go_to_a_scratch_folder_unless_asked(monkeypatch):
     monkeypatch.delenv("HARP_ANALYSIS_FIGURES_DIR", raising=False)
     assert paths.FIGURES_DIR != paths.COMMITTED_FIGURES_DIR
     monkeypatch.setenv("HARP_ANALYSIS_FIGURES_DIR", str(paths.COMMITTED_FIGURES_DIR))
     assert paths.FIGURES_DIR == paths.COMMITTED_FIGURES_DIR
+
+
+def test_a_relative_figures_folder_is_the_caller_s_not_the_notebook_s(tmp_path, monkeypatch):
+    """`make docs` names its scratch folder relative to the checkout, while the kernel runs from
+    the notebook's folder: the figures go to the folder named, never to one under notebooks/."""
+    folder = tmp_path / "notebooks"
+    folder.mkdir()
+    saving = "from harp_analysis.foundation import paths\n(paths.FIGURES_DIR / 'saved').touch()"
+    notebook = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(saving)])
+    nbformat.write(notebook, folder / "n.ipynb")
+    (tmp_path / "scratch").mkdir()
+    monkeypatch.chdir(tmp_path)
+    build.execute_notebook(folder / "n.ipynb", Path("scratch"))
+    assert (tmp_path / "scratch" / "saved").is_file()
+    assert not (folder / "scratch").exists()

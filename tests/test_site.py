@@ -4,9 +4,12 @@ values, so no trajectory is flown), the links they make, the check of a built si
 resources, and the cache keys. `make docs` builds the real site; `make check-docs` opens it in a
 browser (tests/browser/test_docs_site.py)."""
 
+import ast
+import importlib
 import inspect
 import json
 import re
+import typing
 
 import pytest
 
@@ -82,10 +85,34 @@ def test_every_registry_entry_has_its_page_with_the_text_s_caption(pages):
     for entry in registry.load_registry():
         page = (pages / "gallery" / f"{site._slug(entry.number)}.md").read_text()
         assert site._md(entry.title) in page
-        assert f"**{site.SHOWN[entry.status]}**" in page
+        assert f"Status: {site._badge(entry.status)}" in page
         if entry.status in registry.DRAWN and entry.file.endswith(".png"):
-            assert f"../figures/{entry.file}" in page
+            assert f"../figures/{entry.file}\n" in page and ":width: 100%" in page  # linked
             assert f"FIG={entry.number}" in page  # the command that regenerates it
+
+
+def test_the_gallery_shows_a_thumbnail_of_each_drawn_figure_and_a_badge_of_each_status(pages):
+    rows = (pages / "gallery" / "index.md").read_text().split("\n* - ")
+    for entry in registry.load_registry():
+        slug = site._slug(entry.number)
+        (row,) = [row for row in rows if f"{{doc}}`{entry.label} <{slug}>`" in row]
+        assert site._badge(entry.status) in row
+        if entry.status in registry.DRAWN and entry.file.endswith(".png"):
+            thumbnail = site._thumbnail_name(entry.file)
+            assert f"[![{entry.label}](thumbnails/{thumbnail})]({slug}.md)" in row
+
+
+def test_a_thumbnail_is_small_and_made_once(tmp_path):
+    from PIL import Image
+
+    figure = next(paths.COMMITTED_FIGURES_DIR.glob("*.png"))
+    thumbnail = site._thumbnail(figure, tmp_path)
+    with Image.open(thumbnail) as image:
+        assert image.width == site.THUMBNAIL_WIDTH_PX
+    assert thumbnail.stat().st_size < figure.stat().st_size / 5
+    made = thumbnail.stat().st_mtime_ns
+    assert site._thumbnail(figure, tmp_path) == thumbnail
+    assert thumbnail.stat().st_mtime_ns == made and len(list(tmp_path.iterdir())) == 1
 
 
 def test_a_figure_page_links_each_of_its_rows_and_the_function_computing_it(pages):
@@ -101,8 +128,10 @@ def test_the_ledger_page_has_a_target_per_row_and_its_filters_columns(pages):
     rows = _rows()
     assert text.count("(claim-") == len(rows) == len({row.id for row in rows})
     assert ":class: ledger-table" in text
-    for heading in ("chapter", "verdict", "computed by"):
+    for heading in ("chapter", "verdict", "computed by", "explanation"):
         assert f"  - {heading}\n" in text
+    widths = [width for _, width in site.LEDGER_COLUMNS]
+    assert f":widths: {' '.join(map(str, widths))}\n" in text and sum(widths) == 100
 
 
 def test_the_landing_summary_counts_every_figure(pages):
@@ -124,23 +153,91 @@ def test_the_provenance_page_is_the_data_s_readme_with_its_files(pages):
     assert "](radar.md)" in text
 
 
-@pytest.mark.parametrize(
-    "name",
-    [
-        name
-        for name in harp_analysis.__all__
-        if name != "__version__" and inspect.isfunction(getattr(harp_analysis, name))
-    ],
-)
-def test_each_public_entry_point_documents_its_parameters_and_returns(name):
-    doc = inspect.getdoc(getattr(harp_analysis, name))
-    assert "Parameters\n----------" in doc and "Returns\n-------" in doc, name
-    for parameter in inspect.signature(getattr(harp_analysis, name)).parameters.values():
+class _Usage(ast.NodeVisitor):
+    """What a README example calls of the package, in the order it is written: each name it
+    imports, and what each name it assigns holds (a class stands for its instances, and a call
+    of a function for what the function is annotated to return), so that ``launch.but(...)``
+    and ``solution.apogee_altitude()`` are found as Launch.but and
+    ModifiedKeplerSolution.apogee_altitude."""
+
+    def __init__(self) -> None:
+        self.names: dict[str, object] = {}
+        self.called: list[object] = []
+
+    def visit_ImportFrom(self, node: ast.ImportFrom) -> None:
+        for alias in node.names:
+            module = importlib.import_module(node.module)
+            value = getattr(module, alias.name, None)
+            if value is None:
+                value = importlib.import_module(f"{node.module}.{alias.name}")
+            self.names[alias.asname or alias.name] = value
+
+    def value(self, node: ast.expr) -> object:
+        if isinstance(node, ast.Name):
+            return self.names.get(node.id)
+        if isinstance(node, ast.Attribute):
+            return getattr(self.value(node.value), node.attr, None)
+        if isinstance(node, ast.Call):
+            called = self.value(node.func)
+            if inspect.isclass(called):
+                return called
+            try:
+                return typing.get_type_hints(inspect.unwrap(called)).get("return")
+            except TypeError:  # not a function of the package
+                return None
+        return None
+
+    def visit_Assign(self, node: ast.Assign) -> None:
+        self.generic_visit(node)
+        for target in node.targets:
+            if isinstance(target, ast.Name):
+                self.names[target.id] = self.value(node.value)
+
+    def visit_Call(self, node: ast.Call) -> None:
+        self.generic_visit(node)
+        self.called.append(self.value(node.func))
+
+
+def _entry_points() -> dict[str, object]:
+    """The package's public entry points: the functions and classes of ``harp_analysis.__all__``
+    and every function, method and class README's "Using the package" calls, by full name."""
+    readme = (paths.ROOT / "README.md").read_text()
+    section = readme.split("\n## Using the package\n")[1].split("\n## ")[0]
+    usage = _Usage()
+    for block in re.findall(r"```python\n(.*?)```", section, re.S):
+        usage.visit(ast.parse(block))
+    curated = [getattr(harp_analysis, name) for name in harp_analysis.__all__[1:]]
+    found = {}
+    for value in [*curated, *usage.called]:
+        value = inspect.unwrap(getattr(value, "__func__", value))
+        if not (inspect.isfunction(value) or inspect.isclass(value)):
+            continue  # a constant of the curated names (HP), or a call of another package
+        warning = inspect.isclass(value) and issubclass(value, Warning)
+        if value.__module__.startswith("harp_analysis") and not warning:
+            found[f"{value.__module__}.{value.__qualname__}"] = value
+    return found
+
+
+ENTRY_POINTS = _entry_points()
+
+
+@pytest.mark.parametrize(("name", "entry"), ENTRY_POINTS.items(), ids=list(ENTRY_POINTS))
+def test_each_public_entry_point_documents_its_parameters_and_returns(name, entry):
+    """Every parameter under Parameters (numpy style, names grouped "a, b : float" or not), and
+    Returns unless it returns nothing; a class documents its constructor's parameters."""
+    doc = inspect.getdoc(entry) or ""
+    signature = inspect.signature(entry)
+    parameters = [p for p in signature.parameters.values() if p.name not in ("self", "cls")]
+    if parameters:
+        assert "Parameters\n----------" in doc, name
+    returns = signature.return_annotation not in ("None", None)
+    if inspect.isfunction(entry) and returns:
+        assert "Returns\n-------" in doc, name
+    documented = re.findall(r"^(\**\w+(?:, \**\w+)*)(?: :|$)", doc, re.M)
+    listed = {word for line in documented for word in line.split(", ")}
+    for parameter in parameters:
         shown = f"**{parameter.name}" if parameter.kind is parameter.VAR_KEYWORD else parameter.name
-        assert re.search(rf"^{re.escape(shown)} :|^{re.escape(shown)}$", doc, re.M), (
-            name,
-            parameter.name,
-        )
+        assert shown in listed, (name, parameter.name)
 
 
 # --- the check of a built site ----------------------------------------------------------------

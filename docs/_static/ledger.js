@@ -1,6 +1,7 @@
-// The ledger's table (ledger.html): filter its rows by chapter, verdict and text, and sort them
-// by any column (click its heading; again to reverse). No library, nothing fetched: the site
-// works offline. A link to a row (ledger.html#claim-...) shows the row, whatever the filters.
+// The ledger's table (ledger.html): each row's explanation beneath it, across the table's width;
+// filter the rows by chapter, verdict and text, and sort them by any column (click its heading;
+// again to reverse). No library, nothing fetched: the site works offline. A link to a row
+// (ledger.html#claim-...) shows the row, whatever the filters.
 "use strict";
 
 (function () {
@@ -33,11 +34,38 @@
     return [wrapper, select];
   }
 
+  // The explanation column's cells, each moved into a row of its own beneath its row, spanning
+  // the other columns, which share its part of the width (the list-table's <col> widths).
+  function explainBeneath(table, index) {
+    const columns = [...table.querySelectorAll("colgroup col")];
+    if (columns.length) {
+      const share = (col) => parseFloat(col.style.width);
+      const rest = 100 - share(columns[index]);
+      columns[index].remove();
+      columns.splice(index, 1);
+      columns.forEach((col) => { col.style.width = `${(100 * share(col)) / rest}%`; });
+    }
+    table.tHead.rows[0].cells[index].remove();
+    const span = table.tHead.rows[0].cells.length;
+    [...table.tBodies[0].rows].forEach((row) => {
+      const beneath = document.createElement("tr");
+      beneath.className = "ledger-explanation";
+      const cell = row.cells[index];
+      cell.colSpan = span;
+      beneath.appendChild(cell);
+      row.after(beneath);
+      row.explanation = beneath;
+    });
+  }
+
   function setUp(table) {
+    explainBeneath(table, [...table.tHead.rows[0].cells].findIndex(
+      (cell) => cell.textContent.trim() === "explanation"));
     const headings = [...table.tHead.rows[0].cells].map((cell) => cell.textContent.trim());
     const column = (name) => headings.indexOf(name);
     const body = table.tBodies[0];
-    const rows = [...body.rows];
+    const rows = [...body.rows].filter((row) => row.explanation);
+    const pair = (row) => [row, row.explanation];
     const chapterAt = column("chapter");
     const verdictAt = column("verdict");
     const distinct = (index) => [...new Set(rows.map((row) => cellText(row, index)))];
@@ -69,11 +97,12 @@
       const words = search.value.trim().toLowerCase();
       let shown = 0;
       rows.forEach((row) => {
+        const text = pair(row).map((part) => part.textContent).join(" ").toLowerCase();
         const visible =
           (!chapter.value || cellText(row, chapterAt) === chapter.value) &&
           (!verdict.value || cellText(row, verdictAt) === verdict.value) &&
-          (!words || row.textContent.toLowerCase().includes(words));
-        row.hidden = !visible;
+          (!words || text.includes(words));
+        pair(row).forEach((part) => { part.hidden = !visible; });
         shown += visible ? 1 : 0;
       });
       count.textContent = `${shown} of ${rows.length} rows`;
@@ -89,7 +118,7 @@
       const sort = () => {
         const ascending = sorted.index === index ? !sorted.ascending : true;
         sorted = { index, ascending };
-        const keyed = [...body.rows].map((row, position) => {
+        const keyed = [...body.rows].filter((row) => row.explanation).map((row, position) => {
           const text = cellText(row, index);
           return { row, text, number: asNumber(text), position };
         });
@@ -100,7 +129,7 @@
             : a.text.localeCompare(b.text, undefined, { numeric: true });
           return (ascending ? order : -order) || a.position - b.position;
         });
-        keyed.forEach((item) => body.appendChild(item.row));
+        keyed.forEach((item) => body.append(...pair(item.row)));
         table.tHead.querySelectorAll("th").forEach((th) => th.removeAttribute("aria-sort"));
         cell.setAttribute("aria-sort", ascending ? "ascending" : "descending");
       };
@@ -114,16 +143,16 @@
     });
 
     function showTarget() {
-      rows.forEach((row) => row.classList.remove("ledger-target"));
+      rows.forEach((row) => pair(row).forEach((part) => part.classList.remove("ledger-target")));
       const id = decodeURIComponent(window.location.hash.slice(1));
       const target = id && document.getElementById(id);
       const row = target && target.closest("tr");
-      if (!row || !body.contains(row)) return;
+      if (!row || !rows.includes(row)) return;
       if (row.hidden) {
         chapter.value = verdict.value = search.value = "";
         apply();
       }
-      row.classList.add("ledger-target");
+      pair(row).forEach((part) => part.classList.add("ledger-target"));
       row.scrollIntoView({ block: "center" });
     }
     window.addEventListener("hashchange", showTarget);

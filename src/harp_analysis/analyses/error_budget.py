@@ -150,7 +150,13 @@ def martlet_at_barbados() -> Launch:
 def representative_launches() -> dict[str, Launch]:
     """The issue's representative launches, all on the turning Earth: HP at 50 deg (Chapter 2
     A's launch without its wind, which is an uncertainty here) and the baseline cone at
-    Chapter 5's elevations, both fired east from the equator, and the Martlet at Barbados."""
+    Chapter 5's elevations, both fired east from the equator, and the Martlet at Barbados.
+
+    Returns
+    -------
+    dict of str to Launch
+        The launches by name ("HP, 50 deg", "baseline, 45 deg", "Martlet, Barbados", ...).
+    """
     east = dict(rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S, bearing_deg=90.0)
     launches = {"HP, 50 deg": chapter_2(HP, cross_wind_m_s=0.0, spin_rad_s=0.0, **east)}
     for elevation in (30.0, 45.0, 65.0, 85.0):
@@ -237,7 +243,18 @@ def model_error(launch: Launch) -> pd.Series:
     """The ECI MKS's error (m) for ``launch`` against the 3DOF: its apogee altitude, its impact
     point (distance between the two impact points on the ground) and its position at the
     3DOF's apogee time (the distance between the two positions at the same time, Chapter 5 C's
-    measure), each from the nominal flight of :func:`nominal`."""
+    measure), each from the nominal flight of :func:`nominal`.
+
+    Parameters
+    ----------
+    launch : Launch
+        The nominal launch, on the rotating Earth or not.
+
+    Returns
+    -------
+    pandas.Series
+        ``apogee_m``, ``impact_m`` and ``position_m``: the three errors (m).
+    """
     reference, apogee_time, _ = nominal(_check_launch(launch))
     flight = eci.simulate_eci_mks(launch, times_s=[apogee_time], warn=False)
     # the rows at the 3DOF's apogee time and at the impact, turned into the Earth's axes
@@ -355,7 +372,33 @@ def dispersion(
     cluster if given): the root-mean-square distance of the apogee altitude, the impact point
     and the position at the nominal apogee time from the nominal flight's, and the standard
     deviation of each of :data:`OUTPUTS` (``sd_<output>_m``). ``samples`` lies within
-    [:data:`MIN_SAMPLES`, :data:`MAX_SAMPLES`], ``chunk`` within [1, :data:`MAX_CHUNK`]."""
+    [:data:`MIN_SAMPLES`, :data:`MAX_SAMPLES`], ``chunk`` within [1, :data:`MAX_CHUNK`].
+
+    Parameters
+    ----------
+    launch : Launch
+        The nominal launch.
+    uncertainties : sequence of Uncertainty
+        The inputs drawn and their standard deviations (Chapter 7 B's list by default).
+    samples : int
+        Flights of the sample.
+    seed : int
+        The sample's seed: the same seed, the same result, on a cluster or not.
+    method : str
+        ``"sobol"`` (scrambled Sobol' quasi-Monte Carlo) or ``"random"``.
+    chunk : int
+        Flights per chunk of the sweep.
+    client : dask.distributed.Client, optional
+        Runs the chunks on its cluster; None in this process.
+    progress : bool
+        Show a progress bar.
+
+    Returns
+    -------
+    pandas.Series
+        ``apogee_m``, ``impact_m`` and ``position_m`` (the root-mean-square distances, m) and
+        ``sd_<output>_m`` for each of :data:`OUTPUTS`; its name is the number of flights.
+    """
     launch = _check_launch(launch)
     uncertainties = _check_uncertainties(uncertainties)
     samples = whole_number(samples, "samples", low=MIN_SAMPLES, high=MAX_SAMPLES)
@@ -426,7 +469,29 @@ def sensitivity_indices(
     (SALib's Saltelli design, ``base_samples`` x (d + 2) flights, and its estimators with
     their 95 % bootstrap half-widths): rows are inputs, columns ``<output>_S1``, ``_ST``,
     ``_S1_conf``, ``_ST_conf``. ``base_samples`` lies within [:data:`MIN_BASE_SAMPLES`,
-    :data:`MAX_BASE_SAMPLES`]."""
+    :data:`MAX_BASE_SAMPLES`].
+
+    Parameters
+    ----------
+    launch : Launch
+        The nominal launch.
+    uncertainties : sequence of Uncertainty
+        The inputs and their standard deviations (Chapter 7 B's list by default).
+    base_samples : int
+        The Saltelli design's base sample N: N x (d + 2) flights for d inputs.
+    seed : int
+        The design's and the bootstrap's seed.
+    client : dask.distributed.Client, optional
+        Flies the design on its cluster; None in this process.
+    progress : bool
+        Show a progress bar.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per input; columns ``<output>_S1``, ``<output>_ST``, ``<output>_S1_conf`` and
+        ``<output>_ST_conf`` for each of :data:`OUTPUTS`.
+    """
     from SALib.analyze import sobol as analyze
     from SALib.sample import sobol as sample
 

@@ -180,7 +180,14 @@ def _minimise(cost) -> float:
 
 @cache
 def calibration() -> Calibration:
-    """:func:`fit` of :data:`TRAINING`, computed once."""
+    """:func:`fit` of :data:`TRAINING`, computed once.
+
+    Returns
+    -------
+    Calibration
+        The improved MKS's re-entry scale fitted on the training launches, for
+        :func:`harp_analysis.engines.mks_improved.solve`.
+    """
     return fit(TRAINING)
 
 

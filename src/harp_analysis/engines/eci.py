@@ -707,7 +707,27 @@ def solution_for_launch(
     warn: bool = True,
 ) -> mks.ModifiedKeplerSolution:
     """The ECI MKS of a :class:`~harp_analysis.models.launch.Launch`, or of every launch of a
-    :class:`~harp_analysis.models.launch.Launches` at once (:func:`correction_for_launch`)."""
+    :class:`~harp_analysis.models.launch.Launches` at once (:func:`correction_for_launch`).
+
+    Parameters
+    ----------
+    launch : Launch or Launches
+        One launch or many, on a rotating Earth or not (the wind is left out: the MKS has
+        none).
+    model : str or EciModel
+        The reading of Chapters 5-6's corrections (one of :data:`MODELS`' names, or a model).
+    n_terms : int
+        Terms of the series of eq 3.30.
+    warn : bool
+        Warn where a launch leaves the MKS's validity (beta above 0.25, escape, an apogee in
+        the sensible atmosphere).
+
+    Returns
+    -------
+    mks.ModifiedKeplerSolution
+        The MKS of the corrected launch velocity (eqs 6.6-6.15): apogee, impact and the state
+        at any angular range, numbers for one Launch or arrays for many.
+    """
     return solution_for(correction_for_launch(launch, model), n_terms=n_terms, warn=warn)
 
 

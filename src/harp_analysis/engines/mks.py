@@ -768,7 +768,20 @@ class ModifiedKeplerSolution:
 
     def apogee_altitude(self, method: str = "first_zero"):
         """Apogee height (m): at the first zero of du/dtheta, or at eq 6.4's angle (eq 6.5);
-        NaN for a launch that escapes (:attr:`escapes`)."""
+        NaN for a launch that escapes (:attr:`escapes`).
+
+        Parameters
+        ----------
+        method : str
+            "first_zero" (the apogee of the series itself) or "eq_6_4" (the text's closed-form
+            angle, as Chapter 6 predicts the HARP apogees).
+
+        Returns
+        -------
+        float or numpy.ndarray
+            Height above the launch site's sphere (m): a number for a single launch, an array
+            (m,) for many.
+        """
         if method == "first_zero":
             altitude = self._first_zero_apogee[1]
         elif method == "eq_6_4":
@@ -908,7 +921,27 @@ def for_launch(
     sharing a projectile and an atmosphere. Cd0 of the projectile's drag law at the launch Mach
     number, rho0 of the launch's air at the gun, k of eq 3.11 (Chapter 3 B), r0 = R + the
     site's altitude. The MKS is planar and drag-only: a wind is ignored with a warning, and a
-    rotating Earth is :func:`harp_analysis.engines.eci.solution_for_launch`'s."""
+    rotating Earth is :func:`harp_analysis.engines.eci.solution_for_launch`'s.
+
+    Parameters
+    ----------
+    launch : Launch or Launches or sequence of Launch
+        One launch, or many solved at once (one projectile, one atmosphere), each on a
+        non-rotating Earth (a ValueError otherwise) and below the vertical.
+    n_terms : int
+        Terms of the series of eq 3.30 (the text's three-term MKS by default).
+    decay_constant_per_m : float
+        k of eq 3.11's exponential air (1/m; the text's 0.117 /km by default).
+    warn : bool
+        Warn of a wind left out and where a launch leaves the MKS's validity (beta above 0.25,
+        escape, an apogee in the sensible atmosphere).
+
+    Returns
+    -------
+    ModifiedKeplerSolution
+        The closed-form trajectory of every launch: apogee, impact, time of flight and the
+        state at any angular range, as numbers for one Launch or arrays (m,) for many.
+    """
     decay = positive_scalar(decay_constant_per_m, "decay_constant_per_m", "1/m")
     single = isinstance(launch, Launch)
     launches = Launches.from_launches(launch)

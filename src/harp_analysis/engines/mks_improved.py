@@ -830,7 +830,25 @@ def solve(launch, calibration=UNCALIBRATED, *, n_terms=3):
     """The improved MKS of ``launch``: the self-consistent ascent decay and the re-entry decay
     (module docstring), beta_re scaled by ``calibration``. For
     :class:`~harp_analysis.models.launch.Launches`, one solution per launch, in order (each is a
-    fixed point of its own)."""
+    fixed point of its own).
+
+    Parameters
+    ----------
+    launch : Launch or Launches
+        One launch, or many solved one by one.
+    calibration : Calibration
+        The scale of the re-entry loss (``mks_improvement.calibration()`` fits it on the
+        simulations); uncalibrated by default.
+    n_terms : int
+        Terms of the series of eq 3.30.
+
+    Returns
+    -------
+    ImprovedSolution or list of ImprovedSolution
+        The improved MKS of the launch (apogee, impact, the state at any time), or one per
+        launch of a Launches. It warns where a launch lies beyond the drag it was fitted on
+        or is near-vertical in the inertial frame.
+    """
     if not isinstance(calibration, Calibration):
         raise TypeError(f"calibration must be a Calibration; got {type(calibration).__name__}")
     if isinstance(launch, Launches):

@@ -831,7 +831,27 @@ def simulate_3dof_batch(
     ``[launch.but(elevation_deg=e) for e in elevations]``). One row per launch: its elevation,
     speed, bearing and latitude, and the metadata keys of :func:`simulate_3dof` (but
     ``engine`` and ``launch``, and ``rhs_evaluations``, the batch's total, which are in
-    ``frame.attrs``). Same physics and integrator as :func:`simulate_3dof`."""
+    ``frame.attrs``). Same physics and integrator as :func:`simulate_3dof`.
+
+    Parameters
+    ----------
+    launches : Launches or sequence of Launch
+        The launches, flown together in one compiled call.
+    rtol : float
+        The integrator's relative tolerance.
+    max_time_s : float
+        The longest flight (s); launches cut off here warn once (TruncatedFlightWarning), and
+        their row's ``stop_reason`` is "max_time".
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per launch, in order, in SI units: the launch's ``elevation_deg``,
+        ``speed_m_s``, ``bearing_deg`` and ``latitude_deg``, then the fields of
+        :class:`Flights` but the end state (apogee, time of flight, range, cross range, impact
+        speed, ``impact`` and ``stop_reason``, the work it took); the engine, projectile, the
+        batch's total ``rhs_evaluations`` and ``rtol`` in ``frame.attrs``.
+    """
     launches = Launches.from_launches(launches)
     flights = fly_3dof(launches, rtol=rtol, max_time_s=max_time_s)
     summary = pd.DataFrame(

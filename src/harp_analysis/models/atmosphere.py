@@ -118,6 +118,16 @@ def standard_density(altitude_m) -> np.ndarray:
     Reference model of Figs 2.1 and 3.2. Agrees with the printed NASA tables to their four
     significant figures up to 90 km; at 100 km the ``ussa1976`` implementation is 0.15 % above
     the printed 5.604e-7 kg/m^3 (see ``tests/test_atmosphere.py``).
+
+    Parameters
+    ----------
+    altitude_m : float or array_like
+        Geometric altitude (m), 0 to 1000 km.
+
+    Returns
+    -------
+    numpy.ndarray
+        Density (kg/m^3), of the shape of ``altitude_m``.
     """
     return _standard_density(_altitudes(altitude_m, ceiling_m=_STANDARD_TOP_M))
 

@@ -157,7 +157,39 @@ class _LaunchAir:
 @dataclass(frozen=True)
 class Launch(_LaunchAir):
     """A gun launch: what every engine flies (module docstring). Angles in degrees, as a gun
-    is laid; everything else SI."""
+    is laid; everything else SI. Each field is validated here (:data:`BOUNDS`), and an error
+    names it.
+
+    Parameters
+    ----------
+    projectile : Projectile
+        What the gun fires (:data:`~harp_analysis.models.projectiles.HP`, ``LP``,
+        ``BASELINE``, or :func:`~harp_analysis.models.projectiles.get_projectile` of a name).
+    speed_m_s : float
+        Muzzle speed relative to the ground (m/s).
+    elevation_deg : float
+        The gun's elevation above the horizontal, in (0, 90] deg.
+    bearing_deg : float
+        The line of fire, from true north (90 is east).
+    latitude_deg, longitude_deg : float
+        The gun's site (deg north, deg east).
+    site_altitude_m : float
+        The site's height above sea level (m).
+    cross_wind_m_s, head_wind_m_s : float
+        The wind toward the right of the line of fire and against it (m/s), constant with
+        height.
+    spin_rad_s : float
+        The spin the rifling gives (rad/s; the rigid-body engines fly it).
+    atmosphere : str
+        The air's model, one of :data:`~harp_analysis.models.atmosphere.ATMOSPHERE_NAMES`
+        (eqs 2.1-2.2's ``"two_segment"`` by default).
+    rotation_rate_rad_s : float
+        The Earth's rotation rate (rad/s): 0 for the non-rotating Earth of Chapters 2-4,
+        :data:`harp_analysis.foundation.earth.ROTATION_RATE_RAD_S` for Chapter 5's.
+    density_change_fraction, temperature_change_k : float
+        The day's air: the density scaled by 1 + the fraction and the air warmed by as many
+        kelvin, at every height.
+    """
 
     projectile: Projectile
     speed_m_s: float
@@ -237,7 +269,18 @@ class Launch(_LaunchAir):
                 )
 
     def but(self, **changes) -> Launch:
-        """A copy with ``changes`` (validated again), e.g. ``launch.but(elevation_deg=60)``."""
+        """A copy with ``changes`` (validated again), e.g. ``launch.but(elevation_deg=60)``.
+
+        Parameters
+        ----------
+        **changes
+            New values of fields, by name (the class's Parameters).
+
+        Returns
+        -------
+        Launch
+            The changed copy; this launch is left as it is.
+        """
         return replace(self, **changes)
 
 
@@ -254,7 +297,24 @@ class Launches(_LaunchAir):
     the index of its first bad value. The fields are read-only arrays (n,). Indexing gives a
     :class:`Launch` (an integer) or a :class:`Launches` (a slice, a mask or indices); iterating
     gives every :class:`Launch`; :meth:`from_launches` turns a sequence of them into one.
-    Quantities derived from a field that every launch shares are computed once."""
+    Quantities derived from a field that every launch shares are computed once.
+
+    Parameters
+    ----------
+    projectile : Projectile
+        What every launch fires.
+    speed_m_s, elevation_deg, bearing_deg : float or array_like
+        The shot, as :class:`Launch`'s: a number for every launch or an array of one per
+        launch, as is each field below but the atmosphere.
+    latitude_deg, longitude_deg, site_altitude_m : float or array_like
+        The site.
+    cross_wind_m_s, head_wind_m_s, spin_rad_s : float or array_like
+        The wind and the spin.
+    atmosphere : str
+        The air every launch flies through.
+    rotation_rate_rad_s, density_change_fraction, temperature_change_k : float or array_like
+        The Earth's rotation and the day's air.
+    """
 
     def __init__(
         self,
@@ -376,7 +436,19 @@ class Launches(_LaunchAir):
         return (self[i] for i in range(len(self)))
 
     def but(self, **changes) -> Launches:
-        """A copy with ``changes`` (validated again), e.g. ``launches.but(elevation_deg=60)``."""
+        """A copy with ``changes`` (validated again), e.g. ``launches.but(elevation_deg=60)``.
+
+        Parameters
+        ----------
+        **changes
+            New values of fields, by name (the class's Parameters): a number for every launch
+            or an array of one per launch.
+
+        Returns
+        -------
+        Launches
+            The changed copy; these launches are left as they are.
+        """
         fields = dict(self._fields(), projectile=self.projectile, atmosphere=self.atmosphere)
         unknown = set(changes) - set(fields)
         if unknown:

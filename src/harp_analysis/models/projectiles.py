@@ -40,7 +40,29 @@ _SCALE_LP_TO_HP = (15.66 / 5.029) * (0.0395 / 0.0256) ** 2  # Appendix B's inert
 
 @dataclass(frozen=True)
 class Projectile:
-    """Mass properties, reference area, drag and nominal launch speed of a projectile."""
+    """Mass properties, reference area, drag and nominal launch speed of a projectile.
+
+    Parameters
+    ----------
+    name : str
+        Its name (:data:`PROJECTILE_NAMES` for the dissertation's).
+    mass_kg : float
+        Mass (kg).
+    reference_area_m2 : float
+        The area its drag coefficient refers to (m^2).
+    drag_law : DragLaw
+        Its zero-yaw drag coefficient against Mach (:mod:`harp_analysis.models.drag`).
+    launch_speed_m_s : float
+        The nominal muzzle speed the text gives it (m/s).
+    source : str
+        Where the values come from in the dissertation.
+    diameter_m, roll_inertia_kg_m2, pitch_inertia_kg_m2 : float, optional
+        Diameter (m) and moments of inertia (kg m^2) of a rigid body; the point-mass engines
+        need none of them.
+    aero : AeroTables, optional
+        The aerodynamic coefficient tables the 6DOF and MLT fly (Appendix B's M829); None for
+        a point mass.
+    """
 
     name: str
     mass_kg: float

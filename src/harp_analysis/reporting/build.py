@@ -37,15 +37,17 @@ def execute_notebook(
 ) -> float:
     """Run notebook ``path`` in a fresh kernel from its own folder; return the seconds it took.
 
-    ``figures_dir`` redirects :func:`~harp_analysis.reporting.plotting.save_figure` for this run;
-    ``executed_path``, if given, receives the notebook with its outputs (the documentation site's).
+    ``figures_dir`` redirects :func:`~harp_analysis.reporting.plotting.save_figure` for this run
+    (a relative folder is read from the current one, not from the notebook's, where the kernel
+    runs); ``executed_path``, if given, receives the notebook with its outputs (the
+    documentation site's).
     """
     import nbformat
     from nbclient import NotebookClient
 
     environment = dict(os.environ)
     if figures_dir:
-        environment["HARP_ANALYSIS_FIGURES_DIR"] = str(figures_dir)
+        environment["HARP_ANALYSIS_FIGURES_DIR"] = str(Path(figures_dir).resolve())
     start = time.perf_counter()
     notebook = nbformat.read(path, as_version=4)
     client = NotebookClient(

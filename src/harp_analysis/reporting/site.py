@@ -67,6 +67,8 @@ __all__ = [
     "main",
     "CHAPTER_NOTEBOOKS",
     "EXPLORER_NOTEBOOK",
+    "LEDGER_COLUMNS",
+    "THUMBNAIL_WIDTH_PX",
 ]
 
 #: The explorer's notebook: a Voila app, shown by a screenshot and never run by the site.
@@ -82,6 +84,25 @@ SHOWN = {
     "not reproducible": "not reproducible",
     "extension": "drawn, extension",
 }
+#: The ledger page's columns and their shares of its width (%): every row reads whole in the
+#: window, the explanation (the reason behind a verdict) the widest.
+LEDGER_COLUMNS = (
+    ("id", 9),
+    ("chapter", 5),
+    ("source", 6),
+    ("statement", 14),
+    ("text", 5),
+    ("computed", 6),
+    ("unit", 4),
+    ("tolerance", 6),
+    ("verdict", 7),
+    ("figures", 5),
+    ("computed by", 9),
+    ("explanation", 24),
+)
+#: The width of the gallery's thumbnails (px): twice what it shows of them, so that they stay
+#: sharp on a high-density screen.
+THUMBNAIL_WIDTH_PX = 360
 #: Folders of docs/ that stay there (read by sphinx-build -c docs), and files never copied.
 _CONFIGURATION = {"conf.py", "_templates", "_static", "__pycache__"}
 
@@ -293,6 +314,16 @@ def _slug(number: str) -> str:
     return f"{kind}-{bare.lower().replace('.', '-')}"
 
 
+#: The front matter of a page without the theme's column of its contents: the gallery and each
+#: figure's page give the figures that width.
+_WITHOUT_CONTENTS = ("---", "html_theme.sidebar_secondary.remove: true", "---")
+
+
+def _badge(status: str) -> str:
+    """A registry status as a coloured badge with its words (site.css: ``status-badge``)."""
+    return f"[{_md(SHOWN[status])}]{{.status-badge .status-{status.replace(' ', '-')}}}"
+
+
 def _claim_label(claim_id: str) -> str:
     return f"claim-{claim_id}"
 
@@ -347,7 +378,12 @@ def _rows_table(rows: list[LedgerRow]) -> list[str]:
 
 
 def _figure_page(entry: RegistryEntry, rows: list[LedgerRow], chapter_pages: dict[str, str]) -> str:
-    lines = [f"({_slug(entry.number)})=", f"# {entry.label}: {_md(entry.title)}", ""]
+    lines = [
+        *_WITHOUT_CONTENTS,
+        f"({_slug(entry.number)})=",
+        f"# {entry.label}: {_md(entry.title)}",
+        "",
+    ]
     drawn = entry.status in DRAWN and entry.file
     text_caption = [
         "::::{container} text-caption",
@@ -355,7 +391,7 @@ def _figure_page(entry: RegistryEntry, rows: list[LedgerRow], chapter_pages: dic
         "",
         f"*{_md(entry.title)}*",
         "",
-        f"Status: **{SHOWN[entry.status]}** (class: {entry.figure_class}).",
+        f"Status: {_badge(entry.status)} (class: {entry.figure_class}).",
         "",
         _md(entry.reason) if entry.reason else "",
         "",
@@ -364,15 +400,16 @@ def _figure_page(entry: RegistryEntry, rows: list[LedgerRow], chapter_pages: dic
     ]
     if drawn and entry.file.endswith(".png"):
         pdf = entry.file[:-4] + ".pdf"
-        shown = [
+        shown = [  # scaled to the page's width, so Sphinx links it to the full-size image
             f":::{{figure}} ../figures/{entry.file}",
             f":alt: {entry.label} as the project draws it",
             ":class: project-figure",
+            ":width: 100%",
             "",
             _md(entry.caption) if entry.caption else f"{entry.label}, as the project draws it.",
             ":::",
             "",
-            f"Vector: {{download}}`{pdf} <../figures/{pdf}>`",
+            f"Click the figure for its full size; vector: {{download}}`{pdf} <../figures/{pdf}>`",
         ]
     elif drawn:  # a table, written as Markdown
         shown = [f":::{{include}} ../figures/{entry.file}", ":heading-offset: 1", ":::"]
@@ -380,11 +417,11 @@ def _figure_page(entry: RegistryEntry, rows: list[LedgerRow], chapter_pages: dic
         shown = ["*Not drawn: see the status.*"]
     lines += [
         ":::::{container} figure-pair",
-        *text_caption,
-        "",
         "::::{container} project-side",
         *shown,
         "::::",
+        "",
+        *text_caption,
         ":::::",
         "",
     ]
@@ -421,6 +458,7 @@ def _gallery_index(
     extensions = [e for e in entries if e.extension]
     counts = Counter(e.status for e in dissertation)
     lines = [
+        *_WITHOUT_CONTENTS,
         "# Gallery",
         "",
         "Every figure and table of the dissertation, with the text's own caption, the project's "
@@ -448,6 +486,7 @@ def _gallery_index(
             ":::{list-table}",
             ":header-rows: 1",
             ":class: gallery-table",
+            ":widths: 24 37 20 19",
             "",
             "* - figure",
             "  - caption",
@@ -457,10 +496,18 @@ def _gallery_index(
         for e in group:
             counts = Counter(row.verdict for row in tied.get(e.number, []))
             verdicts = ", ".join(f"{counts[v]} {v}" for v in VERDICTS if counts[v])
+            if e.status in DRAWN and e.file.endswith(".png"):
+                shown = (
+                    f"[![{e.label}](thumbnails/{_thumbnail_name(e.file)})]({_slug(e.number)}.md)"
+                )
+            else:
+                shown = "*a table*" if e.status in DRAWN else "*not drawn*"
             lines += [
-                f"* - {{doc}}`{e.label} <{_slug(e.number)}>`",
+                f"* - {shown}",
+                "",
+                f"    {{doc}}`{e.label} <{_slug(e.number)}>`",
                 f"  - {_md(e.title if not e.extension else e.caption or e.title)}",
-                f"  - {SHOWN[e.status]}",
+                f"  - {_badge(e.status)}",
                 f"  - {verdicts}",
             ]
         lines += [":::", ""]
@@ -494,19 +541,10 @@ def _ledger_page(rows: list[LedgerRow], entries: dict[str, RegistryEntry]) -> st
         ":::{list-table}",
         ":header-rows: 1",
         ":class: ledger-table",
+        f":widths: {' '.join(str(width) for _, width in LEDGER_COLUMNS)}",
         "",
-        "* - id",
-        "  - chapter",
-        "  - source",
-        "  - statement",
-        "  - text",
-        "  - computed",
-        "  - unit",
-        "  - tolerance",
-        "  - verdict",
-        "  - figures",
-        "  - computed by",
-        "  - explanation",
+        f"* - {LEDGER_COLUMNS[0][0]}",
+        *(f"  - {name}" for name, _ in LEDGER_COLUMNS[1:]),
     ]
     for row in rows:
         figures = ", ".join(_figure_link(number, entries) for number in row.figures)
@@ -743,12 +781,43 @@ def write_pages(
     return written
 
 
-def _figures_for_site(target: Path) -> None:
-    """The committed figures the gallery shows (PNG, PDF for download, tables)."""
+def _thumbnail_name(figure: str) -> str:
+    """The name of the gallery's thumbnail of figure file ``figure``: another name than the
+    figure's, which Sphinx would otherwise rename on copying both to the site's images."""
+    return figure.removesuffix(".png") + "-thumbnail.png"
+
+
+def _thumbnail(figure: Path, cache: Path) -> Path:
+    """A copy of the committed figure ``figure`` :data:`THUMBNAIL_WIDTH_PX` wide, in 256
+    colours, for the gallery (about 15 kB where the figure is about 170 kB: the gallery loads
+    under 1 MB, not 10): cached in ``cache`` under a digest of the figure's bytes."""
+    from PIL import Image
+
+    data = figure.read_bytes()
+    target = cache / f"{figure.stem}-{hashlib.sha256(data).hexdigest()[:16]}.png"
+    if target.is_file():
+        return target
+    for stale in cache.glob(f"{figure.stem}-*.png"):
+        stale.unlink()
+    with Image.open(figure) as image:
+        small = image.convert("RGB")
+    small.thumbnail((THUMBNAIL_WIDTH_PX, small.height), Image.Resampling.LANCZOS)
+    small = small.quantize(256, dither=Image.Dither.NONE)
+    return paths.write_atomically(target, lambda path: small.save(path, "PNG", optimize=True))
+
+
+def _figures_for_site(target: Path, cache: Path) -> None:
+    """The committed figures the gallery shows (PNG, PDF for download, tables), and the
+    gallery's thumbnails of the PNG ones (made once per figure, kept in ``cache``)."""
     for path in sorted(paths.COMMITTED_FIGURES_DIR.iterdir()):
         if path.suffix in (".png", ".pdf") or (path.suffix == ".md" and path.name != "README.md"):
             if path.name != "CLAIMS.md":
                 _copy_if_changed(path, target / "figures" / path.name)
+        if path.suffix == ".png":
+            thumbnail = _thumbnail(path, cache)
+            _copy_if_changed(
+                thumbnail, target / "gallery" / "thumbnails" / _thumbnail_name(path.name)
+            )
 
 
 def assemble(
@@ -772,7 +841,7 @@ def assemble(
             _copy_if_changed(path, target / relative)
     for name in ("CHANGELOG.md", "CITATION.cff"):
         _copy_if_changed(paths.ROOT / name, target / "_root" / name)
-    _figures_for_site(target)
+    _figures_for_site(target, cache / "thumbnails")
     notebooks = [
         path
         for path in sorted(paths.NOTEBOOKS_DIR.glob(CHAPTER_NOTEBOOKS))

@@ -59,7 +59,17 @@ AT_GUN_M = 1e-3
 @dataclass(frozen=True)
 class TargetPoint:
     """A point fixed to the Earth: its latitude and longitude (deg), altitude above the
-    spherical Earth (m) and, optionally, the time (s after t = 0, now) it must be reached."""
+    spherical Earth (m) and, optionally, the time (s after t = 0, now) it must be reached.
+
+    Parameters
+    ----------
+    latitude_deg, longitude_deg : float
+        Where it is (deg north, deg east).
+    altitude_m : float
+        Its height above the spherical Earth (m, >= 0).
+    arrival_time_s : float, optional
+        When the projectile must reach it (s after t = 0, now; >= 0); None for any time.
+    """
 
     latitude_deg: float
     longitude_deg: float
@@ -546,6 +556,15 @@ def destination(
 
 def barbados_case() -> tuple[Launch, TargetPoint]:
     """Chapter 7's counting case: HP from Barbados at the point 150 km down the gun's bearing
-    (109 deg, Ch. 6) at sea level."""
+    (109 deg, Ch. 6) at sea level.
+
+    Returns
+    -------
+    gun : Launch
+        HP at its Chapter 2 muzzle speed from Barbados on the rotating Earth
+        (:data:`BARBADOS_HP`).
+    target : TargetPoint
+        The point 150 km down the gun's bearing, at sea level.
+    """
     gun = BARBADOS_HP
     return gun, destination(gun, math.degrees(BARBADOS.gun_bearing_rad), 150e3)

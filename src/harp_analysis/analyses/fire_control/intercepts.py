@@ -343,7 +343,33 @@ def raid_windows(
     """:func:`intercept_window` of every target of a raid, every intercept of every target
     solved in one call of the compiled solver: at ``times_s`` (s, the same for every target)
     or at ``count`` times over each target's flight. Given a Dask ``client``, the targets are
-    shared out in chunks among its workers (:func:`.sweeps.sweep`)."""
+    shared out in chunks among its workers (:func:`.sweeps.sweep`).
+
+    Parameters
+    ----------
+    gun : Launch
+        The gun (its elevation and bearing are what is solved).
+    targets : sequence of KeplerTarget
+        The raid (:func:`raid`).
+    times_s : array_like, optional
+        The intercept times (s), the same for every target; None for ``count`` times over
+        each target's flight.
+    count : int
+        Intercept times per target when ``times_s`` is None.
+    branch : str
+        ``"ascending"`` or ``"descending"``: where the projectile meets the target.
+    bearing_limits_deg : (float, float), optional
+        The arc of bearings the gun may take (deg from true north, clockwise from the first to
+        the second); None for any.
+    client : dask.distributed.Client, optional
+        Shares the targets out among its workers; None solves them in this process.
+
+    Returns
+    -------
+    list of InterceptWindow
+        One per target, in order: every intercept time's roots (or why none), the earliest
+        and latest feasible intercept and the feasible fire times.
+    """
     gun = check_gun(gun)
     if isinstance(targets, KeplerTarget | str | bytes) or not isinstance(targets, Sequence):
         raise TypeError(f"targets must be a sequence of KeplerTarget; got {type(targets).__name__}")
@@ -372,14 +398,38 @@ def _raid_chunk(chunk, gun, branch, limits) -> list[InterceptWindow]:
 def raid_roots(windows: Sequence[InterceptWindow]) -> list[tuple[Intercept, FiringSolution]]:
     """Every root of every feasible intercept of ``windows``, with its intercept: what
     :func:`.verification.verify_with_3dof` refines (``[item.aim for item, _ in pairs]``,
-    ``[root for _, root in pairs]``)."""
+    ``[root for _, root in pairs]``).
+
+    Parameters
+    ----------
+    windows : sequence of InterceptWindow
+        The windows of a raid (:func:`raid_windows`).
+
+    Returns
+    -------
+    list of (Intercept, FiringSolution)
+        Each feasible intercept with each of its roots (low and high), in the windows' order.
+    """
     return [(item, root) for window in windows for item in window.intercepts for root in item.roots]
 
 
 def raid(gun: Launch = BARBADOS_HP, count: int = 100) -> list[KeplerTarget]:
     """``count`` re-entering ballistic targets: at t = 0 each is 250 km from the gun at 120 km
     altitude, on bearings spread over 60-160 deg, diving at 3 km/s and 25 deg back toward a
-    point up to 30 km beside the gun (deterministic: the Chapter 7 count's raid)."""
+    point up to 30 km beside the gun (deterministic: the Chapter 7 count's raid).
+
+    Parameters
+    ----------
+    gun : Launch
+        The gun the raid comes at (its latitude places the targets).
+    count : int
+        How many targets.
+
+    Returns
+    -------
+    list of KeplerTarget
+        The targets, by bearing from 60 to 160 deg.
+    """
     count = int(check_range(real_number(count, "count"), "count", low=1))
     targets = []
     for i in range(count):

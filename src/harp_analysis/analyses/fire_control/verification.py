@@ -235,7 +235,30 @@ def verify_with_3dof(gun, targets, solutions, *, rtol=1e-9, tolerance_m=LANDED_M
     the MKS's own Jacobian at the root (updated by Broyden's rule) in place of differences.
     One target and solution, or sequences of them (one Verification each, the same answers
     either way); given a Dask ``client``, the solutions are shared out in chunks among its
-    workers (:func:`.sweeps.sweep`)."""
+    workers (:func:`.sweeps.sweep`).
+
+    Parameters
+    ----------
+    gun : Launch
+        The gun the solutions are for (its own elevation and bearing are not used).
+    targets : TargetPoint or sequence of TargetPoint
+        The points aimed at.
+    solutions : FiringSolution or sequence of FiringSolution
+        One MKS firing solution per target (a root of :func:`.firing_solutions`).
+    rtol : float
+        The 3DOF integrator's relative tolerance.
+    tolerance_m : float
+        The refinement stops once the 3DOF lands this close to its target (m).
+    client : dask.distributed.Client, optional
+        Shares the solutions out among its workers; None flies them in this process.
+
+    Returns
+    -------
+    Verification or list of Verification
+        For each solution: the 3DOF's miss at the MKS solution, the refined elevation and
+        bearing and their change, the refined miss and time of flight, the flights it took,
+        whether it converged and why not.
+    """
     gun = check_gun(gun)
     points, single = check_targets(targets)
     chosen = [solutions] if single else list(solutions) if isinstance(solutions, Sequence) else None

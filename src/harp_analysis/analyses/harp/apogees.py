@@ -424,7 +424,25 @@ def predicted_apogees(
     (the duplicated Barbados round 181 kept and flagged), residual = measured - predicted, and
     for Yuma the printed Error. ``model`` names one of :data:`eci.MODELS` or is an
     :class:`eci.EciModel`; ``drag_area`` (Cd0 A, m^2) defaults to a named model's own
-    (:func:`drag_area_m2`). A copy."""
+    (:func:`drag_area_m2`). A copy.
+
+    Parameters
+    ----------
+    site : str
+        "barbados" (Appendix D) or "yuma" (Appendix E).
+    model : str or EciModel
+        The model of the launch corrections: "dissertation", "consistent" or
+        "printed_columns" (:data:`eci.MODELS`), or one of your own.
+    drag_area : float, optional
+        Cd0 A (m^2); None for the model's own.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per printed row: ``round_number``, ``measured_apogee_m``,
+        ``predicted_apogee_m``, ``residual_m``, ``duplicate_of_earlier_row`` and, for Yuma,
+        ``printed_error_m``.
+    """
     return _predicted(
         get_site(site).name.lower(), eci.get_model(model), _check_drag_area(drag_area)
     )

@@ -381,7 +381,19 @@ def load_appendix(
 
 
 def load_barbados(*, verify: bool = True) -> pd.DataFrame:
-    """Appendix D, Barbados; see :func:`load_appendix`."""
+    """Appendix D, Barbados, as :func:`load_appendix` reads it.
+
+    Parameters
+    ----------
+    verify : bool
+        Check the file's SHA-256 against ``SHA256SUMS`` (the other checks are always made).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per printed row in SI units, the duplicated round 181 flagged in
+        ``duplicate_of_earlier_row``.
+    """
     return load_appendix("barbados", verify=verify)
 
 
