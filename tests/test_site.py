@@ -40,6 +40,26 @@ def _rows() -> list[site.LedgerRow]:
                 function=function,
             )
         )
+    for measurement in ledger.load_measurements():
+        module, _, function = measurement.compute.partition(":")
+        rows.append(
+            site.LedgerRow(
+                id=measurement.id,
+                chapter=site.chapter_of(measurement.source),
+                source=measurement.source,
+                statement=measurement.statement,
+                text="",
+                computed="1",
+                unit=measurement.unit,
+                tolerance="",
+                verdict=site.EXTENSION_RESULT,
+                explanation=measurement.explanation,
+                figures=measurement.figures,
+                module=module,
+                function=function,
+                kind="extension",
+            )
+        )
     return rows
 
 
@@ -127,11 +147,32 @@ def test_the_ledger_page_has_a_target_per_row_and_its_filters_columns(pages):
     text = (pages / "ledger.md").read_text()
     rows = _rows()
     assert text.count("(claim-") == len(rows) == len({row.id for row in rows})
+    assert f"{len([r for r in rows if r.kind == 'claim'])} rows: " in text
     assert ":class: ledger-table" in text
     for heading in ("chapter", "verdict", "computed by", "explanation"):
         assert f"  - {heading}\n" in text
     widths = [width for _, width in site.LEDGER_COLUMNS]
     assert f":widths: {' '.join(map(str, widths))}\n" in text and sum(widths) == 100
+
+
+def test_extension_results_stand_apart_from_the_scored_rows(pages):
+    """Issue 34: the project's own measurements are listed beneath the ledger, unscored."""
+    text = (pages / "ledger.md").read_text()
+    scored, extensions = text.split("## Extension results: measured, not scored")
+    for measurement in ledger.load_measurements():
+        assert f"(claim-{measurement.id})=" in extensions
+        assert f"(claim-{measurement.id})=" not in scored
+    assert ":class: extension-table" in extensions
+
+
+def test_reasons_and_captions_quote_the_ledger_s_numbers(pages):
+    """A registry reason may quote a ledger row (<<row|name:format>>); no page shows the
+    quote itself."""
+    quoted = [e for e in registry.load_registry() if "<<" in e.reason + e.caption]
+    assert quoted, "no reason quotes the ledger"
+    for e in quoted:
+        page = (pages / "gallery" / f"{site._slug(e.number)}.md").read_text()
+        assert "<<" not in page and ">>" not in page
 
 
 def test_the_landing_summary_counts_every_figure(pages):

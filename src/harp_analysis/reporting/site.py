@@ -42,7 +42,7 @@ import time
 from collections import Counter
 from collections.abc import Iterable
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from datetime import UTC, datetime
 from html.parser import HTMLParser
 from pathlib import Path
@@ -51,7 +51,8 @@ from urllib.parse import unquote, urlsplit
 
 from ..foundation import paths
 from .build import execute_notebook
-from .ledger import VERDICTS, evaluate_all, printed_digits
+from .gallery import caption_text, reason_text
+from .ledger import VERDICTS, evaluate_all, evaluate_measurements, known_to, printed_digits
 from .registry import DRAWN, RegistryEntry, load_registry
 
 __all__ = [
@@ -169,6 +170,7 @@ class LedgerRow:
     figures: tuple[str, ...]
     module: str  # the module and function that compute it
     function: str
+    kind: str = "claim"  # or "extension": an extension result, measured, with no verdict
 
 
 def chapter_of(source: str) -> str:
@@ -190,13 +192,16 @@ def _tolerance(value: float | None, kind: str) -> str:
     return f"{value:g}" if kind == "absolute" else f"{value:.2%} rel."
 
 
+#: What the ledger page shows in the verdict column of an extension result.
+EXTENSION_RESULT = "extension result"
+
+
 def _evaluate() -> list[dict]:
     rows = []
     for result in evaluate_all():
         claim = result.claim
         module, _, function = claim.compute.partition(":")
         bound = {"upper": "< ", "lower": "> "}.get(claim.bound or "", "")
-        margin = f" (margin {claim.margin:g})" if claim.margin else ""
         fitted = f"Fitted to {claim.fitted_to}. " if claim.fitted_to else ""
         tolerance = _tolerance(claim.tolerance, claim.tolerance_kind)
         if claim.close_tolerance is not None:
@@ -207,7 +212,7 @@ def _evaluate() -> list[dict]:
             source=claim.source,
             statement=claim.statement,
             text=f"{bound}{claim.text_value:.6g}",
-            computed=f"{result.computed:.{printed_digits(result)}g}{margin}",
+            computed=f"{result.computed:.{printed_digits(result)}g}{known_to(result)}",
             unit=claim.unit,
             tolerance=tolerance,
             verdict=claim.verdict,
@@ -217,7 +222,44 @@ def _evaluate() -> list[dict]:
             function=function,
         )
         rows.append(asdict(row))
+    for measured in evaluate_measurements():
+        row_of = measured.row
+        module, _, function = row_of.compute.partition(":")
+        rows.append(
+            asdict(
+                LedgerRow(
+                    id=row_of.id,
+                    chapter=chapter_of(row_of.source),
+                    source=row_of.source,
+                    statement=row_of.statement,
+                    text="",
+                    computed=f"{measured.computed:.{printed_digits(measured)}g}",
+                    unit=row_of.unit,
+                    tolerance="",
+                    verdict=EXTENSION_RESULT,
+                    explanation=measured.explanation,
+                    figures=row_of.figures,
+                    module=module,
+                    function=function,
+                    kind="extension",
+                )
+            )
+        )
     return rows
+
+
+def quoted_registry(cache: Path | None = None) -> list[RegistryEntry]:
+    """The registry with each reason and caption as a reader sees them, the ledger's numbers
+    quoted in (:func:`.gallery.reason_text`); cached in ``cache`` like the ledger, whose rows
+    they quote."""
+
+    def quoted() -> dict[str, list[str]]:
+        return {e.number: [reason_text(e), caption_text(e)] for e in load_registry()}
+
+    texts = _cached_json(cache, "registry", digest(), quoted) if cache else quoted()
+    return [
+        replace(e, reason=texts[e.number][0], caption=texts[e.number][1]) for e in load_registry()
+    ]
 
 
 def evaluated_ledger(cache: Path) -> list[LedgerRow]:
@@ -514,7 +556,9 @@ def _gallery_index(
     return "\n".join(lines)
 
 
-def _ledger_page(rows: list[LedgerRow], entries: dict[str, RegistryEntry]) -> str:
+def _ledger_page(all_rows: list[LedgerRow], entries: dict[str, RegistryEntry]) -> str:
+    rows = [row for row in all_rows if row.kind == "claim"]
+    extensions = [row for row in all_rows if row.kind == "extension"]
     counts = Counter(row.verdict for row in rows)
     lines = [
         "# The ledger",
@@ -564,12 +608,42 @@ def _ledger_page(rows: list[LedgerRow], entries: dict[str, RegistryEntry]) -> st
             f"  - {_function_link(row)}",
             f"  - {_md(row.explanation)}",
         ]
+    lines += [
+        ":::",
+        "",
+        "## Extension results: measured, not scored",
+        "",
+        "What the project measures of its own work beyond the text (its improved MKS, readings "
+        "resting on input sizes or hypotheses the text does not give): each answers a passage "
+        "of the text but states nothing the text claims, so it carries no verdict, only its "
+        f"measured value ({len(extensions)} results).",
+        "",
+        ":::{list-table}",
+        ":header-rows: 1",
+        ":class: extension-table",
+        ":widths: 16 28 10 46",
+        "",
+        "* - id",
+        "  - what is measured",
+        "  - measured",
+        "  - explanation",
+    ]
+    for row in extensions:
+        lines += [
+            f"* - ({_claim_label(row.id)})=",
+            "",
+            f"    `{row.id}`",
+            f"  - {_md(row.statement)} (answers {_md(row.source)}; {_function_link(row)})",
+            f"  - {_md(row.computed)} {_md(row.unit)}",
+            f"  - {_md(row.explanation)}",
+        ]
     return "\n".join([*lines, ":::", ""])
 
 
-def _summary(entries: list[RegistryEntry], rows: list[LedgerRow]) -> str:
+def _summary(entries: list[RegistryEntry], all_rows: list[LedgerRow]) -> str:
     """The landing page's generated part: what is reproduced, what deviates, the ledger's
     verdicts."""
+    rows = [row for row in all_rows if row.kind == "claim"]
     dissertation = [e for e in entries if not e.extension]
     counts = Counter(e.status for e in dissertation)
     verdicts = Counter(row.verdict for row in rows)
@@ -589,7 +663,8 @@ def _summary(entries: list[RegistryEntry], rows: list[LedgerRow]) -> str:
             + f". Of the {len(rows)} rows of the {{doc}}`ledger </ledger>` (the text's "
             "checkable statements, each recomputed by the package), "
             + ", ".join(f"{verdicts[v]} {v}" for v in VERDICTS)
-            + ".",
+            + f"; and {len(all_rows) - len(rows)} extension results, the project's own "
+            "measurements beyond the text, unscored.",
             "",
             "### Reproduced",
             "",
@@ -736,12 +811,14 @@ def write_pages(
     rows: list[LedgerRow],
     chapter_pages: dict[str, str],
     benchmarks: dict | None,
+    entries: list[RegistryEntry] | None = None,
 ) -> list[Path]:
     """Write the generated pages into the source tree ``target``: the gallery and a page per
     registry entry, the ledger, the landing page's summary, the list of extensions, the
     provenance of the HARP data (its README, its radar note, the files for download), the
-    benchmarks, the curated names; ``chapter_pages`` maps each notebook to its page's name."""
-    entries = list(load_registry())
+    benchmarks, the curated names; ``chapter_pages`` maps each notebook to its page's name;
+    ``entries``, the registry as :func:`quoted_registry` gives it (by default, quoted now)."""
+    entries = quoted_registry() if entries is None else entries
     by_number = {e.number: e for e in entries}
     tied: dict[str, list[LedgerRow]] = {}
     for row in rows:
@@ -859,7 +936,7 @@ def assemble(
         _copy_if_changed(executed[path], target / "chapters" / path.name)
         chapter_pages[path.name] = f"/chapters/{path.stem}"
     results = None if benchmarks == "off" else run_benchmarks(cache, benchmarks)
-    write_pages(target, rows, chapter_pages, results)
+    write_pages(target, rows, chapter_pages, results, quoted_registry(cache))
     expected = {target / "chapters" / path.name for path in notebooks}
     for stale in (target / "chapters").glob("*.ipynb"):  # a notebook renamed or removed
         if stale not in expected:
