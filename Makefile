@@ -53,7 +53,8 @@ explore: $(KERNELS)
 	$(BIN)/voila notebooks/00_explorer.ipynb --no-browser --port=8866 --Voila.ip=127.0.0.1 \
 		--Voila.port_retries=0 --Voila.config_file_paths=serve
 
-# Only the explorer's browser tests and its load test (about a minute, so not in `make test`);
+# Only the explorer's browser tests, its load test and its served ping test (about 1.5 minutes,
+# so not in `make test`);
 # a missing chromium or chromium-driver fails them, never skips.
 check-browser: $(KERNELS)
 	HARP_ANALYSIS_REQUIRE_BROWSER=1 HARP_ANALYSIS_EXPLORER_LOAD=1 $(BIN)/python -m pytest -q tests/browser
