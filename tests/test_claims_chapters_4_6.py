@@ -224,9 +224,9 @@ def test_round_counts_match_the_transcription():
     assert apogees.round_count("yuma") == 22
 
 
-@pytest.mark.parametrize("quantity", ["residual", "muzzle_speed"])
-def test_site_difference_p_value_is_welchs(quantity):
-    """Welch's t and the Welch-Satterthwaite degrees of freedom, by hand."""
+def _welch(quantity: str = "residual"):
+    """Barbados' and Yuma's distinct rounds (residuals or muzzle speeds), each mean's variance
+    and the Welch-Satterthwaite degrees of freedom, by hand."""
     samples = []
     for site in ("barbados", "yuma"):
         if quantity == "residual":
@@ -235,10 +235,17 @@ def test_site_difference_p_value_is_welchs(quantity):
         else:
             rounds = apogees.appendix_rounds(site)
             samples.append(rounds.muzzle_speed_m_s[~rounds.duplicate_of_earlier_row].to_numpy())
-    (a, b) = samples
+    a, b = samples
     va, vb = a.var(ddof=1) / a.size, b.var(ddof=1) / b.size
-    t = (a.mean() - b.mean()) / math.sqrt(va + vb)
     dof = (va + vb) ** 2 / (va**2 / (a.size - 1) + vb**2 / (b.size - 1))
+    return a, b, va, vb, dof
+
+
+@pytest.mark.parametrize("quantity", ["residual", "muzzle_speed"])
+def test_site_difference_p_value_is_welchs(quantity):
+    """Welch's t and the Welch-Satterthwaite degrees of freedom, by hand."""
+    a, b, va, vb, dof = _welch(quantity)
+    t = (a.mean() - b.mean()) / math.sqrt(va + vb)
     assert apogees.site_difference_p_value(quantity) == pytest.approx(
         2 * stats.t.sf(abs(t), dof), rel=1e-9
     )
@@ -248,13 +255,7 @@ def test_site_difference_p_value_is_welchs(quantity):
 def test_site_equivalence_is_the_two_one_sided_welch_tests(margin_m):
     """TOST by hand: Welch's t against a difference of -margin and of +margin, each one-sided;
     the larger p. A wide margin shows equivalence, a narrow one cannot."""
-    samples = []
-    for site in ("barbados", "yuma"):
-        frame = apogees.predicted_apogees(site)
-        samples.append(frame.residual_m[~frame.duplicate_of_earlier_row].to_numpy())
-    (a, b) = samples
-    va, vb = a.var(ddof=1) / a.size, b.var(ddof=1) / b.size
-    dof = (va + vb) ** 2 / (va**2 / (a.size - 1) + vb**2 / (b.size - 1))
+    a, b, va, vb, dof = _welch()
     difference, se = a.mean() - b.mean(), math.sqrt(va + vb)
     p_above = stats.t.sf((difference + margin_m) / se, dof)
     p_below = stats.t.cdf((difference - margin_m) / se, dof)
@@ -268,13 +269,7 @@ def test_site_mean_difference_is_welchs_interval_and_tost_s(margin_m):
     """Issue 34: the sites' difference with its 90 % Welch interval, by hand (Welch-Satterthwaite
     degrees of freedom, Student's t quantile), and the interval's duality with the two one-sided
     tests: inside +-margin exactly when TOST shows equivalence at 5 %."""
-    samples = []
-    for site in ("barbados", "yuma"):
-        frame = apogees.predicted_apogees(site)
-        samples.append(frame.residual_m[~frame.duplicate_of_earlier_row].to_numpy())
-    (a, b) = samples
-    va, vb = a.var(ddof=1) / a.size, b.var(ddof=1) / b.size
-    dof = (va + vb) ** 2 / (va**2 / (a.size - 1) + vb**2 / (b.size - 1))
+    a, b, va, vb, dof = _welch()
     half = stats.t.ppf(0.95, dof) * math.sqrt(va + vb)
     found = apogees.site_mean_difference("residual")
     assert found.estimate == pytest.approx(b.mean() - a.mean(), rel=1e-12)

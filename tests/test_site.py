@@ -19,45 +19,28 @@ from harp_analysis.reporting import ledger, registry, site
 
 
 def _rows() -> list[site.LedgerRow]:
-    """Every ledger row as the site shows it, its computed value made up (the text's)."""
+    """Every ledger row as the site shows it, its computed value made up (the text's, or 1 for
+    an extension result, which has none)."""
     rows = []
-    for claim in ledger.load_claims():
-        module, _, function = claim.compute.partition(":")
+    for row in (*ledger.load_claims(), *ledger.load_measurements()):
+        module, _, function = row.compute.partition(":")
+        scored = isinstance(row, ledger.Claim)
         rows.append(
             site.LedgerRow(
-                id=claim.id,
-                chapter=site.chapter_of(claim.source),
-                source=claim.source,
-                statement=claim.statement,
-                text=f"{claim.text_value:g}",
-                computed=f"{claim.text_value:g}",
-                unit=claim.unit,
-                tolerance=f"{claim.tolerance:g}",
-                verdict=claim.verdict,
-                explanation=claim.explanation,
-                figures=claim.figures,
+                id=row.id,
+                chapter=site.chapter_of(row.source),
+                source=row.source,
+                statement=row.statement,
+                text=f"{row.text_value:g}" if scored else "",
+                computed=f"{row.text_value:g}" if scored else "1",
+                unit=row.unit,
+                tolerance=f"{row.tolerance:g}" if scored else "",
+                verdict=row.verdict if scored else site.EXTENSION_RESULT,
+                explanation=row.explanation,
+                figures=row.figures,
                 module=module,
                 function=function,
-            )
-        )
-    for measurement in ledger.load_measurements():
-        module, _, function = measurement.compute.partition(":")
-        rows.append(
-            site.LedgerRow(
-                id=measurement.id,
-                chapter=site.chapter_of(measurement.source),
-                source=measurement.source,
-                statement=measurement.statement,
-                text="",
-                computed="1",
-                unit=measurement.unit,
-                tolerance="",
-                verdict=site.EXTENSION_RESULT,
-                explanation=measurement.explanation,
-                figures=measurement.figures,
-                module=module,
-                function=function,
-                kind="extension",
+                kind="claim" if scored else "extension",
             )
         )
     return rows
