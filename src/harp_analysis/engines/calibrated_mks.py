@@ -11,6 +11,7 @@ So the calibrated MKS keeps the MKS's flight and adds to it what the 3DOF shows 
 
 - the time, as a factor on the MKS's time of flight, kappa = T_3DOF / T_MKS: the flight at the
   fraction s of its time is the MKS's at s of its own;
+- the apogee, as what the 3DOF's altitude and fraction of the flight differ from the MKS's;
 - the position, as the 3DOF's displacement from the MKS at each fraction s of the flight, along
   the gun's up, downrange and right at launch (axes that turn smoothly with the launch: the
   MKS's own plane swings fast where the Earth's turn leaves the inertial launch velocity nearly
@@ -92,6 +93,8 @@ class Calibration:
     speed_breaks: np.ndarray = field(repr=False)  # no interpolation across one
     time_factor: np.ndarray = field(repr=False)  # (*grid,)
     displacement_m: np.ndarray = field(repr=False)  # (*grid, nodes, 3)
+    apogee_m: np.ndarray = field(repr=False)  # (*grid, 2): the 3DOF's apogee altitude less
+    # the MKS's (m), and its fraction of the flight less the MKS's
     drag_area_m2: float
     flights: int  # 3DOF flights it was learned from
     rhs_evaluations: int  # their right-hand-side evaluations
@@ -100,11 +103,18 @@ class Calibration:
     learned: np.ndarray = field(init=False, repr=False)  # kappa and the displacements, one row
 
     def __post_init__(self):
-        for array in (*self.axes, self.speed_breaks, self.time_factor, self.displacement_m):
+        for array in (
+            *self.axes,
+            self.speed_breaks,
+            self.time_factor,
+            self.displacement_m,
+            self.apogee_m,
+        ):
             array.flags.writeable = False  # shared by every caller of calibration_for
         grid = self.time_factor.shape
         learned = np.concatenate(
-            [self.time_factor[..., None], self.displacement_m.reshape(*grid, -1)], axis=-1
+            [self.time_factor[..., None], self.apogee_m, self.displacement_m.reshape(*grid, -1)],
+            axis=-1,
         )
         learned.flags.writeable = False
         object.__setattr__(self, "learned", learned)
@@ -133,6 +143,13 @@ class _Base:
     def time_of_flight_s(self) -> np.ndarray:
         return self.times[:, -1]
 
+    def apogees(self) -> tuple[np.ndarray, np.ndarray]:
+        """The MKS's apogee altitude (m) and its fraction of the flight (n,)."""
+        angle = np.reshape(self.solution.apogee_angle, (-1, 1))
+        time = _hermite(self.theta, self.times, 1.0 / self.rates, angle)[:, 0]
+        altitude = np.reshape(self.solution.apogee_altitude(), (-1,))
+        return altitude, time / self.time_of_flight_s
+
     gun_axes: np.ndarray  # (n, 3, 3): up, downrange and right of each gun at longitude 0
 
     def positions(self, fraction: np.ndarray) -> np.ndarray:
@@ -146,31 +163,15 @@ class _Base:
         )
 
 
-def _inverse(x: np.ndarray, y: np.ndarray, at: np.ndarray) -> np.ndarray:
-    """Row by row, y at ``at`` (n, k) of the increasing x (n, G), linear between them (clipped
-    to each row's ends): np.interp of every row at once."""
-    count, size = x.shape
-    index = np.clip(
-        np.stack([np.searchsorted(x[i], at[i]) for i in range(count)]) if count < 8 else
-        (np.searchsorted((x + np.arange(count)[:, None] * _OFFSET).ravel(),
-                         (at + np.arange(count)[:, None] * _OFFSET).ravel()).reshape(at.shape)
-         - np.arange(count)[:, None] * size),
-        1, size - 1,
-    )  # fmt: skip
-    rows = np.arange(count)[:, None]
-    x0, x1, y0, y1 = x[rows, index - 1], x[rows, index], y[rows, index - 1], y[rows, index]
-    share = np.clip((at - x0) / (x1 - x0), 0.0, 1.0)
-    return y0 + share * (y1 - y0)
-
-
 #: Larger than any time or fraction a row holds: rows offset by it search as one sorted array.
 _OFFSET = 1e7
 
 
 def _hermite(t: np.ndarray, theta: np.ndarray, rate: np.ndarray, at: np.ndarray) -> np.ndarray:
-    """Row by row, theta at the times ``at`` (n, k), by the cubic Hermite polynomial through
-    the steps' angles ``theta`` and their rates dtheta/dt = h u^2 (n, G) (clipped to the
-    flight): the MKS's own slope, so the inversion is good to the fourth power of a step."""
+    """Row by row, theta at ``at`` (n, k) of the increasing t (n, G), by the cubic Hermite
+    polynomial through the steps' values ``theta`` and slopes ``rate`` = dtheta/dt (n, G)
+    (clipped to each row's ends): with the MKS's own slopes (dtheta/dt = h u^2, or its inverse
+    for t(theta)) good to the fourth power of a step."""
     count, size = t.shape
     shifted = t + np.arange(count)[:, None] * _OFFSET
     index = np.searchsorted(shifted.ravel(), (at + np.arange(count)[:, None] * _OFFSET).ravel())
@@ -241,6 +242,14 @@ def calibrate(gun: Gun, grid: Grid = DEFAULT_GRID, band: Band = BAND) -> Calibra
         warnings.simplefilter("ignore", ModelValidityWarning)
         base = _base(launches, area)
     positions = flights.positions_m.reshape(-1, _NODES, 3)
+    altitude, fraction = base.apogees()
+    apogee = np.stack(
+        [
+            flights.apogee_altitude_m.ravel() - altitude,
+            flights.apogee_time_s.ravel() / flights.time_of_flight_s.ravel() - fraction,
+        ],
+        axis=-1,
+    )
     return Calibration(
         gun,
         band,
@@ -248,6 +257,7 @@ def calibrate(gun: Gun, grid: Grid = DEFAULT_GRID, band: Band = BAND) -> Calibra
         grid.speed_breaks(gun),
         (flights.time_of_flight_s.ravel() / base.time_of_flight_s).reshape(shape),
         _displacements(base, positions).reshape(*shape, _NODES, 3),
+        apogee.reshape(*shape, 2),
         area,
         flights.flights,
         flights.rhs_evaluations,
@@ -262,6 +272,7 @@ def _calibration(gun: Gun, grid: Grid) -> Calibration:
         return {
             "time_factor": calibration.time_factor,
             "displacement_m": calibration.displacement_m,
+            "apogee_m": calibration.apogee_m,
             "cost": np.array(
                 [
                     calibration.drag_area_m2,
@@ -281,6 +292,7 @@ def _calibration(gun: Gun, grid: Grid) -> Calibration:
         grid.speed_breaks(gun),
         arrays["time_factor"],
         arrays["displacement_m"],
+        arrays["apogee_m"],
         float(area),
         int(flights),
         int(evaluations),
@@ -329,7 +341,8 @@ class CalibratedSolution:
             self.calibration.axes, self.calibration.learned, points, self.calibration.speed_breaks
         )
         self._time_factor = learned[:, 0]
-        self._displacement = learned[:, 1:].reshape(-1, _NODES, 3)
+        self._apogee = learned[:, 1:3]
+        self._displacement = learned[:, 3:].reshape(-1, _NODES, 3)
         self._longitude = np.radians(np.ravel(launch.longitude_deg))
         self._rotation = float(self.calibration.gun.rotation_rate_rad_s)
 
@@ -353,28 +366,32 @@ class CalibratedSolution:
             "nka,naj->nkj", parts, self._base.gun_axes
         )
 
-    def _velocities(self, fraction: np.ndarray) -> np.ndarray:
-        """Inertial velocities (n, k, 3) at fractions (n, k) of each flight, at longitude 0: the
-        MKS's (V = h (u onward - u' outward), eq 4.2's speed) on its time stretched by kappa,
-        plus the displacements' rate between their nodes."""
+    def _state(self, fraction: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Inertial positions and velocities (n, k, 3) at fractions (n, k) of each flight, at
+        longitude 0: the MKS's (V = h (u onward - u' outward), eq 4.2's speed) on its time
+        stretched by kappa, plus the displacements and their rate between nodes."""
         base = self._base
         theta = _hermite(base.times, base.theta, base.rates, fraction * base.times[:, -1:])
-        h = np.reshape(base.solution.angular_momentum(theta), theta.shape)
         u = np.reshape(base.solution.u(theta), theta.shape)
         slope = np.reshape(base.solution.du_dtheta(theta), theta.shape)
+        h = np.reshape(base.solution.angular_momentum(theta), theta.shape)
         up, along = base.up.T[:, None, :], base.along.T[:, None, :]
         outward = np.cos(theta)[..., None] * up + np.sin(theta)[..., None] * along
         onward = -np.sin(theta)[..., None] * up + np.cos(theta)[..., None] * along
-        mks = (h * u)[..., None] * onward - (h * slope)[..., None] * outward
         index = np.clip(np.searchsorted(TIME_NODES, fraction), 1, _NODES - 1)
         rows = np.arange(fraction.shape[0])[:, None]
-        rate = (self._displacement[rows, index] - self._displacement[rows, index - 1]) / (
-            TIME_NODES[index] - TIME_NODES[index - 1]
-        )[..., None]
+        before, after = self._displacement[rows, index - 1], self._displacement[rows, index]
+        width = (TIME_NODES[index] - TIME_NODES[index - 1])[..., None]
+        share = (fraction[..., None] - TIME_NODES[index - 1][..., None]) / width
         tof = (self._time_factor * base.time_of_flight_s)[:, None, None]
-        return mks / self._time_factor[:, None, None] + np.einsum(
-            "nka,naj->nkj", rate / tof, base.gun_axes
+        displacement = before + share * (after - before)
+        rate = (after - before) / width / tof
+        position = outward / u[..., None] + np.einsum("nka,naj->nkj", displacement, base.gun_axes)
+        mks = (h * u)[..., None] * onward - (h * slope)[..., None] * outward
+        velocity = mks / self._time_factor[:, None, None] + np.einsum(
+            "nka,naj->nkj", rate, base.gun_axes
         )
+        return position, velocity
 
     def _turned(self, inertial: np.ndarray, times: np.ndarray) -> np.ndarray:
         """Positions (n, k, 3) at longitude 0 turned to the launch's longitude, less the Earth's
@@ -404,28 +421,10 @@ class CalibratedSolution:
         return (self._out(np.atleast_1d(ground)), self._out(np.atleast_1d(cross)))
 
     def _apogees(self) -> tuple[np.ndarray, np.ndarray]:
-        """Apogee altitude (m) and its fraction of the flight: the largest radius on a grid of
-        fractions about the MKS's own apogee, the grid narrowed about its best point four
-        times (each a quarter of the last), then the parabola through the best three."""
-        count = self._displacement.shape[0]
-        rows = np.arange(count)
-        apogee = np.reshape(self._base.solution.apogee_angle, (-1, 1))
-        centre = _inverse(self._base.theta, self._base.times, apogee)[:, 0] / (
-            self._base.time_of_flight_s
-        )
-        low, high = np.clip(centre - 0.15, 0.0, 1.0), np.clip(centre + 0.15, 0.0, 1.0)
-        for points in (61, 9, 9, 9, 9):
-            grid = low[:, None] + (high - low)[:, None] * np.linspace(0.0, 1.0, points)
-            radius = np.linalg.norm(self._at_fractions(grid), axis=-1)
-            best = np.clip(np.argmax(radius, axis=1), 1, points - 2)
-            low, high = grid[rows, best - 1], grid[rows, best + 1]
-        left, middle, right = (radius[rows, best + k] for k in (-1, 0, 1))
-        curvature = np.minimum(left - 2 * middle + right, -1e-300)
-        shift = np.clip(0.5 * (left - right) / curvature, -1.0, 1.0)
-        step = 0.5 * (high - low)
-        return middle - 0.25 * (left - right) * shift - earth.RADIUS_M, grid[
-            rows, best
-        ] + shift * step
+        """Apogee altitude (m) and its fraction of the flight: the MKS's, moved by what the
+        3DOF's apogees differ from it by (learned as the rest is)."""
+        altitude, fraction = self._base.apogees()
+        return altitude + self._apogee[:, 0], fraction + self._apogee[:, 1]
 
     @property
     def apogee_altitude_m(self):
@@ -483,8 +482,9 @@ def simulate_calibrated_mks(
     (:mod:`harp_analysis.models.trajectory`), launch to impact at ``n_points`` equal steps of
     time, in the 3DOF's frame on the rotating Earth (as :func:`.eci.simulate_eci_mks`). The
     velocity is the path's derivative, the MKS's own (eq 4.2) with the displacements' rate;
-    Mach is the speed relative to the air, which turns with the Earth; the drag coefficient the projectile's at that Mach, and
-    drag/gravity in the launch's day air. No right-hand side is evaluated.
+    Mach is the speed relative to the air, which turns with the Earth; the drag coefficient
+    the projectile's at that Mach, and drag/gravity in the launch's day air. No right-hand
+    side is evaluated.
 
     Parameters
     ----------
@@ -513,9 +513,9 @@ def simulate_calibrated_mks(
     solution = CalibratedSolution(launch, calibration or calibration_for(launch, grid))
     tof = float(solution.time_of_flight_s)
     times = np.linspace(0.0, tof, count)
-    fractions = np.linspace(0.0, 1.0, count)[None, :]
-    inertial = solution._at_fractions(fractions)[0]
-    velocity = solution._velocities(fractions)[0]
+    inertial, velocity = (
+        state[0] for state in solution._state(np.linspace(0.0, 1.0, count)[None, :])
+    )
     turned = solution._turned(inertial[None], np.zeros((1, count)))[0]
     fixed = solution._turned(inertial[None], times[None])[0]
     radius = np.linalg.norm(inertial, axis=1)

@@ -34,6 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.interpolate import CubicSpline
 
+from ..foundation.compiled import jit
 from ..foundation.validation import ModelValidityWarning
 from ..models.launch import Launch, Launches
 from ..models.projectiles import Projectile
@@ -48,6 +49,7 @@ __all__ = [
     "GridFlights",
     "fly_grid",
     "interpolate",
+    "warm_up",
 ]
 
 _EDGE = np.geomspace(2e-3, 0.1, 8)
@@ -227,12 +229,15 @@ _STEP_S = 0.5
 @dataclass(frozen=True)
 class GridFlights:
     """The 3DOF flights of a gun over a grid: each flight's inertial positions (m, the frame
-    at longitude 0 at launch) at :data:`TIME_NODES` of its time of flight, and that time (s);
-    arrays shaped by the grid's axes (elevation, speed, bearing, density, ...)."""
+    at longitude 0 at launch) at :data:`TIME_NODES` of its time of flight, that time (s), and
+    its apogee's altitude (m) and time (s); arrays shaped by the grid's axes (elevation, speed,
+    bearing, density, ...)."""
 
     axes: tuple[np.ndarray, ...]
     positions_m: np.ndarray = field(repr=False)  # (*grid, nodes, 3)
     time_of_flight_s: np.ndarray = field(repr=False)  # (*grid,)
+    apogee_altitude_m: np.ndarray = field(repr=False)  # (*grid,)
+    apogee_time_s: np.ndarray = field(repr=False)  # (*grid,)
     rhs_evaluations: int
     seconds: float  # the flights' wall time, measured
 
@@ -249,7 +254,7 @@ def fly_grid(gun: Gun, grid: Grid = DEFAULT_GRID) -> GridFlights:
     mesh = np.meshgrid(*axes, indexing="ij")
     launches = gun.launches(mesh[1], mesh[0], mesh[2], mesh[3])
     positions = np.empty((len(launches), TIME_NODES.size, 3))
-    times = np.empty(len(launches))
+    times, apogees, apogee_times = np.empty((3, len(launches)))
     evaluations = 0
     start = time.perf_counter()
     with warnings.catch_warnings():
@@ -260,12 +265,18 @@ def fly_grid(gun: Gun, grid: Grid = DEFAULT_GRID) -> GridFlights:
             xyz = flight[["x_m", "y_m", "z_m"]].to_numpy()
             positions[i] = CubicSpline(t, xyz, axis=0)(TIME_NODES * t[-1])
             times[i] = t[-1]
+            apogees[i], apogee_times[i] = (
+                flight.attrs["apogee_altitude_m"],
+                flight.attrs["apogee_time_s"],
+            )
             evaluations += flight.attrs["rhs_evaluations"]
     seconds = time.perf_counter() - start
     return GridFlights(
         axes,
         positions.reshape(*shape, TIME_NODES.size, 3),
         times.reshape(shape),
+        apogees.reshape(shape),
+        apogee_times.reshape(shape),
         evaluations,
         seconds,
     )
@@ -311,33 +322,52 @@ def interpolate(
     values: np.ndarray,
     points: np.ndarray,
     speed_breaks: np.ndarray | None = None,
-    chunk: int = 512,
 ) -> np.ndarray:
     """``values`` (*grid, *shape), given at the nodes of ``axes`` (elevation, speed factor,
     bearing, density change), at ``points`` (n, 4): (n, *shape), by local tensor-product
     Lagrange interpolation (cubic in each axis of four or more nodes, periodic in bearing, no
-    stencil across one of ``speed_breaks``)."""
+    stencil across one of ``speed_breaks``). The stencils are found in numpy, the sum over
+    them (a few hundred nodes of a hundred values each) runs compiled."""
     grid = tuple(a.size for a in axes)
     tail = values.shape[len(grid) :]
-    flat = values.reshape(math.prod(grid), -1)
-    out = np.empty((points.shape[0], flat.shape[1]))
+    flat = np.ascontiguousarray(values.reshape(math.prod(grid), -1))
     strides = np.cumprod((1,) + grid[:0:-1])[::-1]
-    letters = "abcd"
-    for begin in range(0, points.shape[0], chunk):
-        part = points[begin : begin + chunk]
-        stencils = [
-            _stencil(a, part[:, d], _PERIODIC[d], speed_breaks if d == 1 else None)
-            for d, a in enumerate(axes)
-        ]
-        index = sum(
-            (indices * stride).reshape((-1,) + (1,) * d + (indices.shape[1],) + (1,) * (3 - d))
-            for d, ((indices, _), stride) in enumerate(zip(stencils, strides))
-        )
-        weight = np.einsum(
-            ",".join(f"n{letter}" for letter in letters) + "->n" + letters,
-            *(weights for _, weights in stencils),
-        )
-        count = part.shape[0]
-        gathered = flat[index.reshape(count, -1)]  # (n, stencil, m)
-        out[begin : begin + chunk] = np.einsum("ns,nsm->nm", weight.reshape(count, -1), gathered)
-    return out.reshape(points.shape[0], *tail)
+    count = points.shape[0]
+    indices = np.zeros((count, 4, 4), dtype=np.int64)
+    weights = np.zeros((count, 4, 4))
+    sizes = np.zeros(4, dtype=np.int64)
+    for d, a in enumerate(axes):
+        index, weight = _stencil(a, points[:, d], _PERIODIC[d], speed_breaks if d == 1 else None)
+        sizes[d] = index.shape[1]
+        indices[:, d, : sizes[d]] = index * strides[d]
+        weights[:, d, : sizes[d]] = weight
+    out = np.empty((count, flat.shape[1]))
+    _tensor_sum(flat, indices, weights, sizes, out)
+    return out.reshape(count, *tail)
+
+
+@jit
+def _tensor_sum(flat, offsets, weights, sizes, out):
+    """out[i] = sum over the stencil's nodes of the product of the four axes' weights times
+    ``flat``'s row at the sum of their offsets."""
+    for i in range(out.shape[0]):
+        out[i, :] = 0.0
+        for a in range(sizes[0]):
+            for b in range(sizes[1]):
+                wab = weights[i, 0, a] * weights[i, 1, b]
+                oab = offsets[i, 0, a] + offsets[i, 1, b]
+                for c in range(sizes[2]):
+                    wabc = wab * weights[i, 2, c]
+                    oabc = oab + offsets[i, 2, c]
+                    for d in range(sizes[3]):
+                        w = wabc * weights[i, 3, d]
+                        row = oabc + offsets[i, 3, d]
+                        for m in range(flat.shape[1]):
+                            out[i, m] += w * flat[row, m]
+
+
+def warm_up() -> None:
+    """Compile the interpolation's kernel ahead of use."""
+    out = np.empty((1, 1))
+    _tensor_sum(np.ones((1, 1)), np.zeros((1, 4, 4), np.int64), np.ones((1, 4, 4)),
+                np.ones(4, np.int64), out)  # fmt: skip
