@@ -111,6 +111,8 @@ ENGINE_STYLES: dict[str, dict[str, Any]] = {
     "MKS": {"color": OKABE_ITO["vermillion"], "linestyle": ":"},
     # the project's improved MKS (harp_analysis.engines.mks_improved), beside the text's
     "improved MKS": {"color": OKABE_ITO["sky blue"], "linestyle": (0, (6, 2, 1, 2, 1, 2))},
+    # the MKS corrected by a table learned from the gun's 3DOF flights (engines.calibrated_mks)
+    "calibrated MKS": {"color": OKABE_ITO["reddish purple"], "linestyle": (0, (3, 1, 1, 1))},
     "measured": {"color": OKABE_ITO["black"], "linestyle": "none", "marker": "o"},
     "text": {"color": OKABE_ITO["grey"], "linestyle": "none", "marker": "x"},
 }
