@@ -2,6 +2,7 @@
 flights, held to the 3DOF it learned from (exactly at its grid's nodes, closely between them),
 to the interpolation's own algebra, and to its band."""
 
+import dataclasses
 import math
 import warnings
 
@@ -229,3 +230,22 @@ def test_the_trajectory_table_meets_its_own_numbers():
     middle = 0.5 * (table.speed_m_s.to_numpy()[1:] + table.speed_m_s.to_numpy()[:-1])
     assert mean_speed == pytest.approx(middle, rel=1e-2)  # the displacements: linear in time
     assert math.isfinite(attrs["time_factor"])
+
+
+def test_a_launch_outside_the_band_learns_no_table(monkeypatch):
+    """The band is checked before the gun's table is looked up or learned (seconds)."""
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("a table was looked up for a launch outside the band")
+
+    monkeypatch.setattr(calibrated_mks, "calibration_for", refuse)
+    with pytest.raises(ValueError, match="elevation_deg = 10 deg"):
+        calibrated_mks.solution_for_launch(Launch(BASELINE, BASELINE.launch_speed_m_s, 10.0))
+
+
+def test_a_gun_whose_flights_do_not_land_cannot_be_learned():
+    """A table is learned from flights that land: one cut off by the 3DOF's flight time (a
+    round so fast it leaves the Earth) refuses the gun, naming the launch."""
+    fast = dataclasses.replace(BASELINE, name="fast cone", launch_speed_m_s=9000.0)
+    with pytest.raises(ValueError, match="does not land within the 3DOF's flight time"):
+        calibrated_mks.calibrate(Gun(fast), COARSE)

@@ -73,9 +73,9 @@ BAND = Band()
 #: Terms of the MKS underneath: the text's three.
 N_TERMS = 3
 #: Equal steps of angular range on which the MKS's t(theta) is inverted for a fraction of its
-#: flight, linearly between them. The calibration learns its displacements through the same
-#: inversion, so what a coarse grid misses is learned with the rest (a smooth function of the
-#: launch): 65 steps do as well as 401 on the judged launches (benchmarks/bench_calibrated_mks.py).
+#: flight, by cubic Hermite polynomials through the MKS's own slopes (error as a step's fourth
+#: power); the calibration learns its displacements through the same inversion, so what is
+#: left is learned with the rest.
 _TIME_GRID = 65
 _NODES = TIME_NODES.size
 
@@ -83,9 +83,10 @@ _NODES = TIME_NODES.size
 @dataclass(frozen=True)
 class Calibration:
     """What the calibrated MKS learned of one gun: at each node of the grid's axes (elevation,
-    speed factor, bearing, density change), the time factor kappa and the displacements (m) of
-    the 3DOF from the MKS at :data:`.flight_grid.TIME_NODES`, along its radius, its path and
-    across its plane (read-only arrays), and the drag area of the MKS underneath."""
+    speed factor, bearing, density change), the time factor kappa, the apogee's difference and
+    the displacements (m) of the 3DOF from the MKS at :data:`.flight_grid.TIME_NODES`, along
+    the gun's up, downrange and right (read-only arrays), and the drag area of the MKS
+    underneath."""
 
     gun: Gun
     band: Band
@@ -138,6 +139,7 @@ class _Base:
     theta: np.ndarray
     times: np.ndarray
     rates: np.ndarray  # dtheta/dt = h u^2 at each step (n, G)
+    gun_axes: np.ndarray  # (n, 3, 3): up, downrange and right of each gun at longitude 0
 
     @property
     def time_of_flight_s(self) -> np.ndarray:
@@ -149,8 +151,6 @@ class _Base:
         time = _hermite(self.theta, self.times, 1.0 / self.rates, angle)[:, 0]
         altitude = np.reshape(self.solution.apogee_altitude(), (-1,))
         return altitude, time / self.time_of_flight_s
-
-    gun_axes: np.ndarray  # (n, 3, 3): up, downrange and right of each gun at longitude 0
 
     def positions(self, fraction: np.ndarray) -> np.ndarray:
         """The MKS's inertial positions (n, k, 3) at the fractions (n, k) of its time of
@@ -204,7 +204,7 @@ def _base(launch: Launch | Launches, drag_area_m2: float) -> _Base:
     rates = np.reshape(solution.angular_momentum(theta), theta.shape) * u * u
     up, along = eci.flight_plane(correction, np.ravel(launch.latitude_rad))
     latitude = np.ravel(launch.latitude_rad)
-    gun_up, downrange, east = launch_frame(latitude, 0.0 * latitude, np.ravel(launch.bearing_rad))
+    gun_up, downrange, _ = launch_frame(latitude, 0.0 * latitude, np.ravel(launch.bearing_rad))
     right = np.cross(downrange.T, gun_up.T)
     gun_axes = np.stack([np.broadcast_to(gun_up.T, right.shape), downrange.T, right], axis=1)
     return _Base(correction, solution, up, along, theta, times, rates, gun_axes)
@@ -333,7 +333,10 @@ class CalibratedSolution:
 
     def __init__(self, launch: Launch | Launches, calibration: Calibration | None = None):
         self.launch = launch
-        self.calibration = calibration_for(launch) if calibration is None else calibration
+        if calibration is None:  # the band first: a launch outside it learns no table
+            BAND.check(launch, Gun.of(launch), ENGINE)
+            calibration = calibration_for(launch)
+        self.calibration = calibration
         self.single = isinstance(launch, Launch)
         points = self.calibration.band.check(launch, self.calibration.gun, ENGINE)
         self._base = _base(launch, self.calibration.drag_area_m2)

@@ -38,6 +38,7 @@ from ..foundation.compiled import jit
 from ..foundation.validation import ModelValidityWarning
 from ..models.launch import Launch, Launches
 from ..models.projectiles import Projectile
+from ..models.trajectory import TruncatedFlightWarning
 from . import threedof
 
 __all__ = [
@@ -259,8 +260,16 @@ def fly_grid(gun: Gun, grid: Grid = DEFAULT_GRID) -> GridFlights:
     start = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelValidityWarning)
+        warnings.simplefilter("error", TruncatedFlightWarning)  # a table of landed flights
         for i, launch in enumerate(launches):
-            flight = threedof.simulate_3dof(launch, output_step_s=_STEP_S)
+            try:
+                flight = threedof.simulate_3dof(launch, output_step_s=_STEP_S)
+            except TruncatedFlightWarning as cut:
+                raise ValueError(
+                    f"the gun's launch at {launch.speed_m_s:.6g} m/s and "
+                    f"{launch.elevation_deg:g} deg does not land within the 3DOF's flight time: "
+                    f"no table can be learned from it ({cut})"
+                ) from None
             t = flight.time_s.to_numpy()
             xyz = flight[["x_m", "y_m", "z_m"]].to_numpy()
             positions[i] = CubicSpline(t, xyz, axis=0)(TIME_NODES * t[-1])
