@@ -205,12 +205,12 @@ def test_a_calibration_is_learned_once_kept_on_disk_and_read_only(monkeypatch, t
         calibrated_mks._calibration.cache_clear()
         second = calibrated_mks.calibration_for(launch, COARSE)  # disk
         assert second.loaded and second.seconds == 0.0
-        assert np.array_equal(second.learned, first.learned)
-        for array in (second.learned, second.time_factor, second.displacement_m, *second.axes):
+        assert np.array_equal(second.values, first.values)
+        for array in (second.time_factor, second.displacement_m, *second.axes):
             assert not array.flags.writeable
         with pytest.raises(ValueError, match="read-only"):
             second.time_factor[0, 0, 0, 0] = 1.0
-        assert len(list(tmp_path.rglob("calibrations/*.npz"))) == 1
+        assert len(list(tmp_path.rglob("tables/*.npz"))) == 1
     finally:
         calibrated_mks._calibration.cache_clear()
 
@@ -238,7 +238,7 @@ def test_a_launch_outside_the_band_learns_no_table(monkeypatch):
     def refuse(*args, **kwargs):
         raise AssertionError("a table was looked up for a launch outside the band")
 
-    monkeypatch.setattr(calibrated_mks, "calibration_for", refuse)
+    monkeypatch.setattr(calibrated_mks, "_calibration", refuse)
     with pytest.raises(ValueError, match="elevation_deg = 10 deg"):
         calibrated_mks.solution_for_launch(Launch(BASELINE, BASELINE.launch_speed_m_s, 10.0))
 

@@ -43,6 +43,14 @@ from harp_analysis.models.launch import (
 from harp_analysis.models.projectiles import BASELINE, HP
 from harp_analysis.models.trajectory import BASE_COLUMNS, METADATA_KEYS
 
+#: The learned tables' tolerance: the grid of the 3DOF flights they learn from, coarse to the
+#: default.
+LEARNED_GRIDS = (
+    Grid(elevations_deg=(15.0, 40.0, 65.0, 88.0), speed_step=0.35),
+    Grid(elevations_deg=(15.0, 25.0, 35.0, 50.0, 65.0, 80.0, 88.0), speed_step=0.2),
+    Grid(elevations_deg=(15.0, 20.0, 25.0, 30.0, 37.0, 45.0, 55.0, 65.0, 75.0, 84.0, 88.0)),
+    DEFAULT_GRID,
+)
 #: The suite runs over every engine of the catalogue; what follows are the suite's own numbers,
 #: by engine name: each engine's tolerance option, loosest first, for the convergence check,
 #: how close to the conic its numerics come in vacuum (m), how well it keeps the energy
@@ -54,24 +62,24 @@ TOLERANCE_STEPS = {
     "mks": (1, 2, 3, 8),
     "eci_mks": (1, 2, 3, 8),
     "appendix_a": (0.08, 0.04, 0.02, 0.005),
-    # the calibrated MKS's table: its grid of training flights, coarse to the default
-    "calibrated_mks": (
-        Grid(elevations_deg=(15.0, 40.0, 65.0, 88.0), speed_step=0.35),
-        Grid(elevations_deg=(15.0, 25.0, 35.0, 50.0, 65.0, 80.0, 88.0), speed_step=0.2),
-        Grid(elevations_deg=(15.0, 20.0, 25.0, 30.0, 37.0, 45.0, 55.0, 65.0, 75.0, 84.0, 88.0)),
-        DEFAULT_GRID,
-    ),
+    "calibrated_mks": LEARNED_GRIDS,
+    "flyout_table": LEARNED_GRIDS,
 }
-VACUUM_TOLERANCE_M = {"mlt": 50.0, "appendix_a": 300.0}  # others 1 mm
+VACUUM_TOLERANCE_M = {
+    "mlt": 50.0,
+    "appendix_a": 300.0,
+    "flyout_table": 10.0,  # its cubics across the grid's elevations and speeds: metres of range
+}  # others 1 mm
 ENERGY_TOLERANCE = {
     "mlt": 1e-8,  # gravity frozen over each segment
     "calibrated_mks": 1e-6,  # in vacuum its table learns the 3DOF's own error (rtol 1e-9)
+    "flyout_table": 1e-6,  # its velocity the spline's rate, interpolated across nodes: cm/s
     "appendix_a": 1e-5,  # its speed is a backward difference half a step old: an error g dt V
 }  # others 1e-9
 REQUIRED_OPTIONS = {"appendix_a": {"dt_s": 0.01}}  # the text prints no step
-#: The calibrated MKS flies the denser day from the heavier gun's table and the lighter round
+#: The learned tables fly the denser day from the heavier gun's table and the lighter round
 #: from its own: alike to what a table holds (metres, seconds' hundredths), not to rtol.
-DAY_TOLERANCE = {"calibrated_mks": 2e-4}
+DAY_TOLERANCE = {"calibrated_mks": 2e-4, "flyout_table": 2e-4}
 
 ENGINES = list(catalogue.ENGINES.values())
 VACUUM = chapter_2(
@@ -97,7 +105,9 @@ def engine(request):
 
 #: Where an engine flies only a band of launches (the calibrated MKS: 0.8-1.15 of the
 #: projectile's muzzle speed), its vacuum launch is in the band.
-_VACUUM_FOR = {"calibrated_mks": VACUUM.but(speed_m_s=HP.launch_speed_m_s)}
+_VACUUM_FOR = {
+    name: VACUUM.but(speed_m_s=HP.launch_speed_m_s) for name in ("calibrated_mks", "flyout_table")
+}
 
 
 def _vacuum(engine):

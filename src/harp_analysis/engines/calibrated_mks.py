@@ -39,22 +39,28 @@ SI inside; degrees only in the names that say so.
 
 from __future__ import annotations
 
-import math
 import time
 import warnings
-from dataclasses import dataclass, field
-from functools import lru_cache
+from dataclasses import dataclass
+from functools import cached_property, lru_cache
 
 import numpy as np
 import pandas as pd
 
-from ..foundation import earth
-from ..foundation.stored import stored_arrays
-from ..foundation.validation import ModelValidityWarning, finite_array, whole_number
+from ..foundation.validation import ModelValidityWarning
 from ..models.launch import Launch, Launches
-from ..models.trajectory import MAX_ROWS, describe, launch_frame, rotate_about_axis, surface_ranges
 from . import eci, mks
-from .flight_grid import DEFAULT_GRID, TIME_NODES, Band, Grid, Gun, fly_grid, interpolate
+from .flight_grid import DEFAULT_GRID, TIME_NODES, Band, Grid, GridFlights, Gun
+from .learned import (
+    LearnedSolution,
+    LearnedTable,
+    gun_axes,
+    gun_of,
+    joined,
+    learned_flights,
+    split,
+    stored_table,
+)
 
 __all__ = [
     "Calibration",
@@ -78,47 +84,36 @@ N_TERMS = 3
 #: left is learned with the rest.
 _TIME_GRID = 65
 _NODES = TIME_NODES.size
+#: Numbers a calibration learns per flight before its displacements: kappa and the apogee's two.
+_NUMBERS = 3
 
 
-@dataclass(frozen=True)
-class Calibration:
+@dataclass(frozen=True, kw_only=True)
+class Calibration(LearnedTable):
     """What the calibrated MKS learned of one gun: at each node of the grid's axes (elevation,
     speed factor, bearing, density change), the time factor kappa, the apogee's difference and
     the displacements (m) of the 3DOF from the MKS at :data:`.flight_grid.TIME_NODES`, along
-    the gun's up, downrange and right (read-only arrays), and the drag area of the MKS
-    underneath."""
+    the gun's up, downrange and right (``values``, one row per node: kappa, the apogee's
+    altitude and fraction of the flight less the MKS's, then the displacements), and the drag
+    area of the MKS underneath."""
 
-    gun: Gun
-    band: Band
-    axes: tuple[np.ndarray, ...] = field(repr=False)
-    speed_breaks: np.ndarray = field(repr=False)  # no interpolation across one
-    time_factor: np.ndarray = field(repr=False)  # (*grid,)
-    displacement_m: np.ndarray = field(repr=False)  # (*grid, nodes, 3)
-    apogee_m: np.ndarray = field(repr=False)  # (*grid, 2): the 3DOF's apogee altitude less
-    # the MKS's (m), and its fraction of the flight less the MKS's
     drag_area_m2: float
-    flights: int  # 3DOF flights it was learned from
-    rhs_evaluations: int  # their right-hand-side evaluations
-    seconds: float  # what learning it took (s), measured; 0 where it was loaded from disk
-    loaded: bool = False  # from the disk store, not computed in this process
-    learned: np.ndarray = field(init=False, repr=False)  # kappa and the displacements, one row
 
-    def __post_init__(self):
-        for array in (
-            *self.axes,
-            self.speed_breaks,
-            self.time_factor,
-            self.displacement_m,
-            self.apogee_m,
-        ):
-            array.flags.writeable = False  # shared by every caller of calibration_for
-        grid = self.time_factor.shape
-        learned = np.concatenate(
-            [self.time_factor[..., None], self.apogee_m, self.displacement_m.reshape(*grid, -1)],
-            axis=-1,
-        )
-        learned.flags.writeable = False
-        object.__setattr__(self, "learned", learned)
+    @property
+    def time_factor(self) -> np.ndarray:
+        """kappa = T_3DOF / T_MKS at each node (*grid,)."""
+        return split(self.values, _NUMBERS)[0][..., 0]
+
+    @property
+    def apogee_m(self) -> np.ndarray:
+        """The 3DOF's apogee altitude less the MKS's (m), and its fraction of the flight less
+        the MKS's, at each node (*grid, 2)."""
+        return split(self.values, _NUMBERS)[0][..., 1:]
+
+    @property
+    def displacement_m(self) -> np.ndarray:
+        """The 3DOF's displacement from the MKS at each node (*grid, nodes, 3)."""
+        return split(self.values, _NUMBERS)[1]
 
 
 def _base_drag_area(gun: Gun) -> float:
@@ -145,12 +140,12 @@ class _Base:
     def time_of_flight_s(self) -> np.ndarray:
         return self.times[:, -1]
 
-    def apogees(self) -> tuple[np.ndarray, np.ndarray]:
-        """The MKS's apogee altitude (m) and its fraction of the flight (n,)."""
+    def apogees(self) -> np.ndarray:
+        """The MKS's apogee altitude (m) and its fraction of the flight (n, 2)."""
         angle = np.reshape(self.solution.apogee_angle, (-1, 1))
         time = _hermite(self.theta, self.times, 1.0 / self.rates, angle)[:, 0]
         altitude = np.reshape(self.solution.apogee_altitude(), (-1,))
-        return altitude, time / self.time_of_flight_s
+        return np.stack([altitude, time / self.time_of_flight_s], axis=-1)
 
     def positions(self, fraction: np.ndarray) -> np.ndarray:
         """The MKS's inertial positions (n, k, 3) at the fractions (n, k) of its time of
@@ -203,11 +198,7 @@ def _base(launch: Launch | Launches, drag_area_m2: float) -> _Base:
     u = np.reshape(solution.u(theta), theta.shape)
     rates = np.reshape(solution.angular_momentum(theta), theta.shape) * u * u
     up, along = eci.flight_plane(correction, np.ravel(launch.latitude_rad))
-    latitude = np.ravel(launch.latitude_rad)
-    gun_up, downrange, _ = launch_frame(latitude, 0.0 * latitude, np.ravel(launch.bearing_rad))
-    right = np.cross(downrange.T, gun_up.T)
-    gun_axes = np.stack([np.broadcast_to(gun_up.T, right.shape), downrange.T, right], axis=1)
-    return _Base(correction, solution, up, along, theta, times, rates, gun_axes)
+    return _Base(correction, solution, up, along, theta, times, rates, gun_axes(launch))
 
 
 def _displacements(base: _Base, positions_m: np.ndarray) -> np.ndarray:
@@ -220,85 +211,55 @@ def _displacements(base: _Base, positions_m: np.ndarray) -> np.ndarray:
     return np.einsum("nkj,naj->nka", difference, base.gun_axes)
 
 
-def calibrate(gun: Gun, grid: Grid = DEFAULT_GRID, band: Band = BAND) -> Calibration:
+def calibrate(
+    gun: Gun, grid: Grid = DEFAULT_GRID, band: Band = BAND, flights: GridFlights | None = None
+) -> Calibration:
     """Learn the calibrated MKS of ``gun`` from its 3DOF flights over ``grid``
-    (:func:`.flight_grid.fly_grid`): each flight's time of flight over the MKS's and its
-    displacement from the MKS at :data:`.flight_grid.TIME_NODES`. No caching (see
-    :func:`calibration_for`)."""
-    if not grid.covers(band):
-        raise ValueError(f"grid: its axes do not span the band {band}")
+    (:func:`.flight_grid.fly_grid`, or ``flights`` where they were flown already): each
+    flight's time of flight over the MKS's, its apogee's difference from the MKS's and its
+    displacement from the MKS at :data:`.flight_grid.TIME_NODES`. Its ``seconds``: the
+    flights' and its own. No caching (see :func:`calibration_for`)."""
     if gun.site_altitude_m != 0.0:
         raise ValueError(
             f"the {ENGINE} cannot learn gun.site_altitude_m = {gun.site_altitude_m:g}: the "
             "MKS underneath launches from r0 = R"
         )
+    flights = learned_flights(gun, grid, band, flights)
     start = time.perf_counter()
-    flights = fly_grid(gun, grid)
     shape = flights.time_of_flight_s.shape
-    mesh = np.meshgrid(*flights.axes, indexing="ij")
-    launches = gun.launches(mesh[1], mesh[0], mesh[2], mesh[3])
+    launches = gun.at_nodes(flights.axes)
     area = _base_drag_area(gun)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelValidityWarning)
         base = _base(launches, area)
     positions = flights.positions_m.reshape(-1, _NODES, 3)
-    altitude, fraction = base.apogees()
-    apogee = np.stack(
-        [
-            flights.apogee_altitude_m.ravel() - altitude,
-            flights.apogee_time_s.ravel() / flights.time_of_flight_s.ravel() - fraction,
-        ],
-        axis=-1,
+    time_factor = flights.time_of_flight_s.ravel() / base.time_of_flight_s
+    apogee = (
+        np.stack(
+            [
+                flights.apogee_altitude_m.ravel(),
+                (flights.apogee_time_s / flights.time_of_flight_s).ravel(),
+            ],
+            axis=-1,
+        )
+        - base.apogees()
     )
+    displacement = _displacements(base, positions)
     return Calibration(
-        gun,
-        band,
-        flights.axes,
-        grid.speed_breaks(gun),
-        (flights.time_of_flight_s.ravel() / base.time_of_flight_s).reshape(shape),
-        _displacements(base, positions).reshape(*shape, _NODES, 3),
-        apogee.reshape(*shape, 2),
-        area,
-        flights.flights,
-        flights.rhs_evaluations,
-        time.perf_counter() - start,
+        gun=gun,
+        band=band,
+        grid=grid,
+        values=joined(np.column_stack([time_factor, apogee]), displacement).reshape(*shape, -1),
+        drag_area_m2=area,
+        flights=flights.flights,
+        rhs_evaluations=flights.rhs_evaluations,
+        seconds=flights.seconds + time.perf_counter() - start,
     )
 
 
 @lru_cache(maxsize=16)
 def _calibration(gun: Gun, grid: Grid) -> Calibration:
-    def compute() -> dict[str, np.ndarray]:
-        calibration = calibrate(gun, grid)
-        return {
-            "time_factor": calibration.time_factor,
-            "displacement_m": calibration.displacement_m,
-            "apogee_m": calibration.apogee_m,
-            "cost": np.array(
-                [
-                    calibration.drag_area_m2,
-                    calibration.flights,
-                    calibration.rhs_evaluations,
-                    calibration.seconds,
-                ]
-            ),  # fmt: skip
-        }
-
-    arrays, loaded = stored_arrays(__name__, "calibrations", f"{gun.key} {grid!r}", compute)
-    area, flights, evaluations, seconds = arrays["cost"]
-    return Calibration(
-        gun,
-        BAND,
-        tuple(np.array(a) for a in grid.axes(gun)),
-        grid.speed_breaks(gun),
-        arrays["time_factor"],
-        arrays["displacement_m"],
-        arrays["apogee_m"],
-        float(area),
-        int(flights),
-        int(evaluations),
-        0.0 if loaded else float(seconds),
-        loaded,
-    )
+    return stored_table(Calibration, __name__, gun, grid, BAND, lambda: calibrate(gun, grid))
 
 
 def calibration_for(launch: Launch | Launches, grid: Grid = DEFAULT_GRID) -> Calibration:
@@ -318,44 +279,26 @@ def calibration_for(launch: Launch | Launches, grid: Grid = DEFAULT_GRID) -> Cal
     Calibration
         What the calibrated MKS learned of the gun, and what learning it cost.
     """
-    if not isinstance(launch, Launch | Launches):
-        raise TypeError(f"launch must be a Launch or Launches; got {type(launch).__name__}")
-    if not isinstance(grid, Grid):
-        raise TypeError(f"grid must be a flight_grid.Grid; got {type(grid).__name__}")
-    return _calibration(Gun.of(launch), grid)
+    gun = gun_of(launch, grid)
+    BAND.check(launch, gun, ENGINE)  # before a table is learned for a launch it cannot serve
+    return _calibration(gun, grid)
 
 
-class CalibratedSolution:
+class CalibratedSolution(LearnedSolution):
     """The calibrated MKS of one launch or many (:class:`~harp_analysis.models.launch.Launches`):
     the ECI MKS underneath with the calibration's time factor and displacements interpolated
-    at each launch. Numbers for a single Launch, arrays (n,) for many; positions in the 3DOF's
-    frame (inertial, the axes the Earth has at launch, the launch's longitude included)."""
+    at each launch (:class:`.learned.LearnedSolution`: numbers for a single Launch, arrays (n,)
+    for many; positions in the 3DOF's frame)."""
+
+    ENGINE = ENGINE
 
     def __init__(self, launch: Launch | Launches, calibration: Calibration | None = None):
-        self.launch = launch
-        if calibration is None:  # the band first: a launch outside it learns no table
-            BAND.check(launch, Gun.of(launch), ENGINE)
-            calibration = calibration_for(launch)
-        self.calibration = calibration
-        self.single = isinstance(launch, Launch)
-        points = self.calibration.band.check(launch, self.calibration.gun, ENGINE)
-        self._base = _base(launch, self.calibration.drag_area_m2)
-        learned = interpolate(
-            self.calibration.axes, self.calibration.learned, points, self.calibration.speed_breaks
-        )
-        self._time_factor = learned[:, 0]
-        self._apogee = learned[:, 1:3]
-        self._displacement = learned[:, 3:].reshape(-1, _NODES, 3)
-        self._longitude = np.radians(np.ravel(launch.longitude_deg))
-        self._rotation = float(self.calibration.gun.rotation_rate_rad_s)
-
-    def _out(self, values: np.ndarray):
-        return float(values[0]) if self.single else values
-
-    @property
-    def time_of_flight_s(self):
-        """Time of flight (s)."""
-        return self._out(self._time_factor * self._base.time_of_flight_s)
+        table = calibration_for(launch) if calibration is None else calibration
+        super().__init__(launch, table)
+        self._base = _base(launch, table.drag_area_m2)
+        numbers, self._displacement = split(self._learned, _NUMBERS)
+        self._time_factor, self._apogee = numbers[:, 0], numbers[:, 1:]
+        self._time_of_flight = self._time_factor * self._base.time_of_flight_s
 
     def _at_fractions(self, fraction: np.ndarray) -> np.ndarray:
         """Inertial positions (n, k, 3) at fractions (n, k) of each flight, at longitude 0."""
@@ -369,87 +312,35 @@ class CalibratedSolution:
             "nka,naj->nkj", parts, self._base.gun_axes
         )
 
-    def _state(self, fraction: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Inertial positions and velocities (n, k, 3) at fractions (n, k) of each flight, at
-        longitude 0: the MKS's (V = h (u onward - u' outward), eq 4.2's speed) on its time
-        stretched by kappa, plus the displacements and their rate between nodes."""
+    def _velocities(self, fraction: np.ndarray) -> np.ndarray:
+        """Inertial velocities (n, k, 3) at fractions (n, k) of each flight, at longitude 0: the
+        MKS's (V = h (u onward - u' outward), eq 4.2's speed) on its time stretched by kappa,
+        plus the displacements' rate between their nodes."""
         base = self._base
         theta = _hermite(base.times, base.theta, base.rates, fraction * base.times[:, -1:])
+        h = np.reshape(base.solution.angular_momentum(theta), theta.shape)
         u = np.reshape(base.solution.u(theta), theta.shape)
         slope = np.reshape(base.solution.du_dtheta(theta), theta.shape)
-        h = np.reshape(base.solution.angular_momentum(theta), theta.shape)
         up, along = base.up.T[:, None, :], base.along.T[:, None, :]
         outward = np.cos(theta)[..., None] * up + np.sin(theta)[..., None] * along
         onward = -np.sin(theta)[..., None] * up + np.cos(theta)[..., None] * along
+        mks = (h * u)[..., None] * onward - (h * slope)[..., None] * outward
         index = np.clip(np.searchsorted(TIME_NODES, fraction), 1, _NODES - 1)
         rows = np.arange(fraction.shape[0])[:, None]
-        before, after = self._displacement[rows, index - 1], self._displacement[rows, index]
-        width = (TIME_NODES[index] - TIME_NODES[index - 1])[..., None]
-        share = (fraction[..., None] - TIME_NODES[index - 1][..., None]) / width
+        rate = (self._displacement[rows, index] - self._displacement[rows, index - 1]) / (
+            TIME_NODES[index] - TIME_NODES[index - 1]
+        )[..., None]
         tof = (self._time_factor * base.time_of_flight_s)[:, None, None]
-        displacement = before + share * (after - before)
-        rate = (after - before) / width / tof
-        position = outward / u[..., None] + np.einsum("nka,naj->nkj", displacement, base.gun_axes)
-        mks = (h * u)[..., None] * onward - (h * slope)[..., None] * outward
-        velocity = mks / self._time_factor[:, None, None] + np.einsum(
-            "nka,naj->nkj", rate, base.gun_axes
+        return mks / self._time_factor[:, None, None] + np.einsum(
+            "nka,naj->nkj", rate / tof, base.gun_axes
         )
-        return position, velocity
 
-    def _turned(self, inertial: np.ndarray, times: np.ndarray) -> np.ndarray:
-        """Positions (n, k, 3) at longitude 0 turned to the launch's longitude, less the Earth's
-        turn by ``times`` (n, k) where ``times`` is given (Earth-fixed), in the Earth's axes at
-        launch."""
-        angle = self._longitude[:, None] - self._rotation * times
-        flat = rotate_about_axis(inertial.reshape(-1, 3).T, angle.ravel())
-        return flat.T.reshape(inertial.shape)
-
-    @property
-    def impact_point_m(self) -> np.ndarray:
-        """The impact point fixed to the Earth (3,) or (n, 3), in the Earth's axes at launch."""
-        ends = self._at_fractions(np.ones((self._displacement.shape[0], 1)))
-        tof = self._time_factor * self._base.time_of_flight_s
-        fixed = self._turned(ends, tof[:, None])[:, 0]
-        return fixed[0] if self.single else fixed
-
-    @property
-    def impact_range_m(self):
-        """(ground range, cross range) of the impact on the turning Earth (m)."""
-        latitude = np.ravel(self.launch.latitude_rad)
-        up, downrange, _ = launch_frame(
-            latitude, self._longitude, np.ravel(self.launch.bearing_rad)
-        )
-        points = np.reshape(self.impact_point_m, (-1, 3))
-        ground, cross = surface_ranges(points, up.T, downrange.T)
-        return (self._out(np.atleast_1d(ground)), self._out(np.atleast_1d(cross)))
-
+    @cached_property
     def _apogees(self) -> tuple[np.ndarray, np.ndarray]:
         """Apogee altitude (m) and its fraction of the flight: the MKS's, moved by what the
         3DOF's apogees differ from it by (learned as the rest is)."""
-        altitude, fraction = self._base.apogees()
-        return altitude + self._apogee[:, 0], fraction + self._apogee[:, 1]
-
-    @property
-    def apogee_altitude_m(self):
-        """Apogee altitude (m)."""
-        return self._out(self._apogees()[0])
-
-    @property
-    def apogee_time_s(self):
-        """Time of the apogee (s)."""
-        return self._out(self._apogees()[1] * self._time_factor * self._base.time_of_flight_s)
-
-    def positions(self, time_s) -> np.ndarray:
-        """Inertial positions (k, 3) of a single launch at ``time_s`` (k,) within the flight, in
-        the 3DOF's frame (the launch's longitude included)."""
-        if not self.single:
-            raise TypeError("positions: a single launch's; index the launches for one")
-        times = np.atleast_1d(finite_array(time_s, "time_s"))
-        tof = float(self.time_of_flight_s)
-        if np.any(times < 0) or np.any(times > tof * (1 + 1e-12)):
-            raise ValueError(f"time_s must lie within the flight, 0 to {tof:.6g} s")
-        inertial = self._at_fractions((times / tof)[None, :])
-        return self._turned(inertial, np.zeros((1, times.size)))[0]
+        altitude, fraction = (self._base.apogees() + self._apogee).T
+        return altitude, fraction
 
 
 def solution_for_launch(
@@ -482,12 +373,10 @@ def simulate_calibrated_mks(
     n_points: int = 400,
 ) -> pd.DataFrame:
     """The calibrated MKS of ``launch`` as the engines' trajectory table
-    (:mod:`harp_analysis.models.trajectory`), launch to impact at ``n_points`` equal steps of
-    time, in the 3DOF's frame on the rotating Earth (as :func:`.eci.simulate_eci_mks`). The
-    velocity is the path's derivative, the MKS's own (eq 4.2) with the displacements' rate;
-    Mach is the speed relative to the air, which turns with the Earth; the drag coefficient
-    the projectile's at that Mach, and drag/gravity in the launch's day air. No right-hand
-    side is evaluated.
+    (:meth:`.learned.LearnedSolution.trajectory`), launch to impact at ``n_points`` equal
+    steps of time, in the 3DOF's frame on the rotating Earth. The velocity is the path's
+    derivative, the MKS's own (eq 4.2) with the displacements' rate. No right-hand side is
+    evaluated.
 
     Parameters
     ----------
@@ -507,69 +396,9 @@ def simulate_calibrated_mks(
         The trajectory table, one row per output time in SI units, with the shared metadata in
         ``frame.attrs`` (and ``time_factor``, the calibration's kappa at the launch).
     """
-    count = whole_number(n_points, "n_points", low=3, high=MAX_ROWS)
-    if not isinstance(launch, Launch):
-        raise TypeError(
-            f"launch must be a Launch; got {type(launch).__name__} (solution_for_launch solves "
-            "Launches together)"
-        )
     solution = CalibratedSolution(launch, calibration or calibration_for(launch, grid))
-    tof = float(solution.time_of_flight_s)
-    times = np.linspace(0.0, tof, count)
-    inertial, velocity = (
-        state[0] for state in solution._state(np.linspace(0.0, 1.0, count)[None, :])
-    )
-    turned = solution._turned(inertial[None], np.zeros((1, count)))[0]
-    fixed = solution._turned(inertial[None], times[None])[0]
-    radius = np.linalg.norm(inertial, axis=1)
-    altitude = radius - earth.RADIUS_M
-    omega = solution._rotation
-    air_velocity = velocity - omega * np.stack(
-        [-inertial[:, 1], inertial[:, 0], 0.0 * inertial[:, 2]], axis=1
-    )
-    air_speed = np.linalg.norm(air_velocity, axis=1)
-    speed = np.linalg.norm(velocity, axis=1)
-    density, sound = launch.air(np.maximum(altitude, 0.0))
-    mach = air_speed / sound
-    projectile = launch.projectile
-    cd = projectile.drag_law(mach)
-    drag = 0.5 * density * cd * projectile.reference_area_m2 * air_speed**2
-    up, downrange, _ = launch_frame(
-        launch.latitude_rad, math.radians(launch.longitude_deg), launch.bearing_rad
-    )
-    ground, cross = surface_ranges(fixed, np.ravel(up), np.ravel(downrange))
-    momentum = np.linalg.norm(np.cross(inertial, velocity), axis=1)
-    frame = pd.DataFrame(
-        {
-            "time_s": times,
-            "x_m": turned[:, 0],
-            "y_m": turned[:, 1],
-            "z_m": turned[:, 2],
-            "altitude_m": altitude,
-            "ground_range_m": ground,
-            "cross_range_m": cross,
-            "speed_m_s": speed,
-            "mach": mach,
-            "drag_coefficient": cd,
-            "drag_to_gravity": drag / (projectile.mass_kg * earth.GM_M3_S2 / radius**2),
-            "specific_angular_momentum_m2_s": momentum,
-            "flight_path_angle_rad": np.arcsin(
-                np.clip(np.sum(velocity * inertial, axis=1) / (speed * radius), -1.0, 1.0)
-            ),
-        }
-    )
-    apogee_altitude = float(solution.apogee_altitude_m)
-    apogee_time = float(solution.apogee_time_s)
-    apogee_ground = float(np.interp(apogee_time, times, ground))
-    return describe(
-        frame,
-        engine=ENGINE,
-        launch=launch,
-        apogee=(apogee_time, apogee_altitude, apogee_ground),
-        impact=True,
-        rhs_evaluations=0,
-        steps=0,
-        max_time_s=math.inf,
+    return solution.trajectory(
+        n_points,
         time_factor=float(solution._time_factor[0]),
-        calibration_flights=solution.calibration.flights,
+        calibration_flights=solution.table.flights,
     )
