@@ -185,10 +185,13 @@ def _crosses(level, sign, y, y_new):
 @jit(inline=True)
 def _apogee_cut(level, t, hi, y, y_new, a, a_new, work):
     """The step (s) up to the apogee where the step from ``y`` starts on or below ``level``,
-    turns over and ends below it, else 0: a flight that starts on its level and turns over
-    within the step (a shot a hundredth of a degree above the horizon rises millimetres) would
-    cross the level twice unseen; cut at the apogee, the fall from it is a crossing. A turn at
-    the step's very end needs no cut: cut there, the same step would be tried again for ever."""
+    turns over and ends below it, else 0: such a step may cross the level twice unseen. A
+    flight that starts on its level and turns over within the step (a shot a hundredth of a
+    degree above the horizon rises millimetres) falls through it from the apogee; one that
+    tops out just above it (a step over the apogee of a flight ending where it rises through
+    the level sags tens of metres below it) rises through it on the way to the apogee. A
+    turn at the step's very end needs no cut: cut there, the same step would be tried again
+    for ever."""
     above, after = event_value(ALTITUDE, level, y), event_value(ALTITUDE, level, y_new)
     turns = event_value(RADIAL_VELOCITY, 0.0, y) > 0 >= event_value(RADIAL_VELOCITY, 0.0, y_new)
     if above < _ON_LEVEL_M and after < 0 and turns:
@@ -265,9 +268,9 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
                 if fraction * hi > MIN_CUT_S and fraction < 1 - STRADDLE:
                     accept = False
                     h = hi * fraction * (1 - 2 * STRADDLE)
-        if math.isnan(stop_t):  # the levels a flight falls through to its end
-            for level, falls in ((end_m, end_sign > 0), (ground_m, grounded)):
-                cut = _apogee_cut(level, t, hi, y, y_new, a, a_new, work) if falls else 0.0
+        if math.isnan(stop_t):  # the levels a flight may end at, either way for the end level
+            for level, ends in ((end_m, True), (ground_m, grounded)):
+                cut = _apogee_cut(level, t, hi, y, y_new, a, a_new, work) if ends else 0.0
                 if cut > MIN_CUT_S:
                     accept = False
                     h = cut
