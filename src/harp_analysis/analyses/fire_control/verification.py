@@ -10,7 +10,6 @@ SI inside (m, s, rad); degrees only in the arguments and fields named ``_deg``.
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import partial
@@ -21,9 +20,15 @@ import numpy as np
 from ...engines import threedof
 from ...foundation.sweeps import client_shares, sweep
 from ...foundation.validation import check_range, real_number
-from ...models.launch import Launch, Launches
-from ...models.trajectory import EndAltitudeNotCrossedWarning
-from .firing import FiringSolution, TargetPoint, check_gun, check_targets, east_north
+from ...models.launch import Launch
+from .firing import (
+    FiringSolution,
+    TargetPoint,
+    check_gun,
+    check_targets,
+    east_north,
+    east_north_axes,
+)
 
 __all__ = ["Verification", "verify_with_3dof", "LANDED_M"]
 
@@ -62,29 +67,28 @@ class _Batch3dof:
     target's altitude on its branch: the east and north miss (m) at each target."""
 
     def __init__(self, gun: Launch, targets: list[TargetPoint], rising: np.ndarray, rtol: float):
-        self.launches = Launches.from_launches([gun])
+        self.layings = threedof.Layings(gun, rtol=rtol)  # the gun validated once, here
         self.aims = np.array([target.earth_fixed_m() for target in targets])  # 3DOF's frame
+        self.axes = east_north_axes(self.aims)
         self.altitudes = np.array([target.altitude_m for target in targets])
-        self.rising, self.rtol = rising, rtol
+        self.rising = rising
         self.flights = np.zeros(len(targets), dtype=int)
         self.rhs_evaluations = np.zeros(len(targets), dtype=int)
 
     def miss(self, x: np.ndarray, which: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The miss (k, 2) of the shots at ``x`` (k, 2; rad) for targets ``which`` (k,), NaN
-        where the shot never reaches its target's altitude, and the times of flight (k,)."""
-        elevation = np.clip(np.degrees(x[:, 0]), 1e-9, 90.0)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", EndAltitudeNotCrossedWarning)  # a short shot misses
-            flight = threedof.fly_3dof(
-                self.launches.but(elevation_deg=elevation, bearing_deg=np.degrees(x[:, 1]) % 360),
-                rtol=self.rtol,
-                end_altitude_m=self.altitudes[which],
-                rising=self.rising[which],
-            )
+        where the shot never reaches its target's altitude (quietly: a short shot misses), and
+        the times of flight (k,)."""
+        flight = self.layings.fly(
+            np.clip(x[:, 0], math.radians(1e-9), 0.5 * math.pi),
+            x[:, 1],
+            self.altitudes[which],
+            self.rising[which],
+        )
         np.add.at(self.flights, which, 1)
         np.add.at(self.rhs_evaluations, which, flight.rhs_evaluations)
         aims = self.aims[which]
-        miss = east_north(flight.end_position_m.T - aims, aims)
+        miss = east_north(flight.end_position_m.T - aims, aims, self.axes[which])
         miss[~flight.impact] = np.nan
         return miss, np.where(flight.impact, flight.time_of_flight_s, np.nan)
 
