@@ -43,6 +43,8 @@ _FAILURES = 4
 #: raised by this (rad) up to this many times.
 _RAISES = 8
 _RAISE_RAD = math.radians(0.25)
+#: No shot is flown flatter than this (rad): the 3DOF's elevations lie in (0, 90] deg.
+_FLATTEST_RAD = math.radians(1e-9)
 
 
 @dataclass(frozen=True)
@@ -80,7 +82,7 @@ class _Batch3dof:
         where the shot never reaches its target's altitude (quietly: a short shot misses), and
         the times of flight (k,)."""
         flight = self.layings.fly(
-            np.clip(x[:, 0], math.radians(1e-9), 0.5 * math.pi),
+            np.clip(x[:, 0], _FLATTEST_RAD, 0.5 * math.pi),
             x[:, 1],
             self.altitudes[which],
             self.rising[which],
@@ -146,10 +148,18 @@ def _refine_3dof(
         which = everyone[active & (shots.flights < _MAX_FLIGHTS) & (failures < _FAILURES)]
         if not which.size:
             break
+        # a singular Jacobian has no step (differenced at the vertical, where a step of either
+        # angle flies the same shot, it is zero)
+        regular = np.linalg.det(jacobian[which]) != 0.0
+        step = np.zeros((which.size, 2))
         with np.errstate(invalid="ignore", divide="ignore"):
-            step = -np.linalg.solve(jacobian[which], miss[which][..., None])[..., 0]
+            step[regular] = -np.linalg.solve(
+                jacobian[which][regular], miss[which][regular][..., None]
+            )[..., 0]
         step[~np.isfinite(step)] = 0.0
         trial = x[which] + step
+        trial[:, 0] = np.clip(trial[:, 0], _FLATTEST_RAD, 0.5 * math.pi)
+        step = trial - x[which]
         new_miss, new_time = shots.miss(trial, which)
         new_size = np.hypot(new_miss[:, 0], new_miss[:, 1])
         landed = np.isfinite(new_size)
