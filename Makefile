@@ -20,10 +20,10 @@ $(STAMP): environment.txt pyproject.toml
 # The engines' compiled kernels (numba), built once per version of the sources and cached on
 # disk (harp_analysis.foundation.compiled), so that no notebook waits for a compiler.
 $(KERNELS): $(STAMP) $(shell find src/harp_analysis -name '*.py')
-	$(BIN)/python -c "from harp_analysis.engines import mks, mks_improved, mlt, sixdof, threedof; \
+	$(BIN)/python -c "from harp_analysis.engines import flight_grid, mks, mks_improved, mlt, sixdof, threedof; \
 		from harp_analysis.analyses.fire_control import solver as firing_solver; \
 		threedof.warm_up(); sixdof.warm_up(); mlt.warm_up(); mks.warm_up(); mks_improved.warm_up(); \
-		firing_solver.warm_up()"
+		firing_solver.warm_up(); flight_grid.warm_up()"
 	touch $@
 
 # Figures go to the committed figures/ only here; notebooks run elsewhere write to a scratch
@@ -91,6 +91,7 @@ benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_sweeps.py
 	$(BIN)/python benchmarks/bench_figures.py
 	$(BIN)/python benchmarks/bench_mks_improved.py
+	$(BIN)/python benchmarks/bench_calibrated_mks.py
 
 clean-venv:
 	rm -rf $(VENV)

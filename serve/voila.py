@@ -1,14 +1,15 @@
 """Voila's settings for the explorer's web page (`make explore`, tests/browser), read with
 `--Voila.config_file_paths=serve`.
 
-Every page load starts a kernel of its own (about 310 MB). A kernel no page is connected to
-(the page closed, its request aborted, its connection lost) is shut down after ten idle minutes;
-a page left open keeps its kernel. A lost connection is found by pinging: the server pings each
-page every 30 s and drops one that has answered nothing for 75 s, which it finds when a ping is
-due: at the third after the page's last answer, 90 s after it (60 to 90 s after the page fell
-silent). A page that misses one ping is kept, and the browser answers pings itself, even while
-the page's script is busy. HARP_ANALYSIS_EXPLORER_PING_S sets the interval in seconds (the
-timeout is 2.5 intervals), for tests/browser/test_explorer_ping.py.
+Every page load starts a kernel of its own (about 310 MB; up to 130 MB more where the reader
+asks for the calibrated MKS, whose tables of the last 16 guns it keeps). A kernel no page is
+connected to (the page closed, its request aborted, its connection lost) is shut down after ten
+idle minutes; a page left open keeps its kernel. A lost connection is found by pinging: the
+server pings each page every 30 s and drops one that has answered nothing for 75 s, which it
+finds when a ping is due: at the third after the page's last answer, 90 s after it (60 to 90 s
+after the page fell silent). A page that misses one ping is kept, and the browser answers pings
+itself, even while the page's script is busy. HARP_ANALYSIS_EXPLORER_PING_S sets the interval in
+seconds (the timeout is 2.5 intervals), for tests/browser/test_explorer_ping.py.
 
 At most HARP_ANALYSIS_EXPLORER_KERNELS kernels (8 by default) live at once: beyond
 that a page load gets a short page saying so (HTTP 503), not a kernel. Neither Voila 0.5 nor

@@ -22,6 +22,7 @@ EXPECTED = {
     "bench_sweeps": "same apogees",  # its smoke clusters are threads of this process
     "bench_figures": "PNG byte-identical to the reference's",
     "bench_mks_improved": "target: a solve in 5 ms",
+    "bench_calibrated_mks": "launches at once",
 }
 
 

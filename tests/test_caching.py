@@ -33,6 +33,8 @@ IMMUTABLE_RESULTS = {
     "reporting.registry.load_registry": "a tuple of frozen RegistryEntry of strings and a bool",
     "models.taylor_maccoll.baseline_fit": "a frozen DragFit of four floats",
     "engines.threedof._kernels": "a tuple of compiled functions",
+    "engines.calibrated_mks._calibration": "a frozen Calibration whose arrays are read-only",
+    "engines.flyout_table._table": "a frozen FlyoutTable whose arrays are read-only",
 }
 
 #: Plain caches in other engineers' modules that hand out editable objects (issue 25, item 4:

@@ -19,7 +19,7 @@ from traitlets.config import Config
 
 from harp_analysis.analyses import mks_improvement
 from harp_analysis.analyses.harp import apogees
-from harp_analysis.engines import mks, mks_improved, threedof
+from harp_analysis.engines import calibrated_mks, mks, mks_improved, threedof
 from harp_analysis.foundation import earth
 from harp_analysis.models.launch import HP_CHAPTER_2, Launch
 from harp_analysis.models.projectiles import BASELINE, HP
@@ -240,6 +240,71 @@ def test_the_improved_mks_is_another_view_of_the_same_launch():
     assert numbers["improved MKS"][0] == pytest.approx(improved.apogee_altitude_m / 1e3, abs=5e-4)
     view.controls["elevation_deg"].value = 80.0
     assert "measured (HARP)" not in _numbers(view.summary.value)
+
+
+def test_the_calibrated_mks_is_another_view_with_the_engines_own_numbers():
+    """Ticked, the calibrated MKS is drawn and summed up as simulate_calibrated_mks flies it
+    directly, its distance from the 3DOF measured at the 3DOF's times; its gun's table is
+    learned on first use and said to be while it is (a still Earth's: a second or two)."""
+    view = explorer.Explorer("Chapter 2 A: HP")
+    said = []
+    view.messages.observe(lambda change: said.append(change["new"]), names="value")
+    view.controls["calibrated_mks"].value = True
+    assert "Finding the calibrated MKS's table for this gun" in html.unescape(said[0])
+    assert view.preset.value == "Chapter 2 A: HP"
+    launch = explorer.launch_for(view.settings)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        table = calibrated_mks.simulate_calibrated_mks(launch)
+    shown = _numbers(view.summary.value)["calibrated MKS"]
+    attrs = table.attrs
+    expected = [attrs["apogee_altitude_m"] / 1e3, attrs["apogee_time_s"], attrs["range_m"] / 1e3]
+    assert shown[0] == pytest.approx(expected[0], abs=5e-4)  # km, to the metre
+    assert shown[1] == pytest.approx(expected[1], abs=0.05)  # s, to the tenth
+    assert shown[2] == pytest.approx(expected[2], abs=5e-4)
+    assert shown[3] == pytest.approx(attrs["time_of_flight_s"], abs=0.05)
+    flown = view.last_flown["calibrated MKS"]
+    assert flown.path.equals(table[["time_s", "ground_range_m", "altitude_m"]])
+    distance = flown.error_to_3dof
+    assert 0 < len(distance) and distance.time_s.max() <= attrs["time_of_flight_s"]
+    assert distance.distance_m.max() < 1e3  # its measured accuracy: ~0.1 km, wind left out
+    assert 'the calibrated MKS ignores "Cross wind (m/s)" = 5' in html.unescape(view.messages.value)
+    said.clear()
+    view.controls["elevation_deg"].value = 60.0  # the same gun: nothing to learn
+    assert not any("Finding" in text for text in said)
+    view.controls["elevation_deg"].value = 10.0  # below its band: a message, the rest flown
+    assert "The calibrated MKS cannot fly this launch" in view.messages.value
+    assert set(_numbers(view.summary.value)) == {"3DOF"}  # the MKS's beta 1.2: not shown
+    view.preset.value = "Chapter 2 A: HP"
+    assert view.controls["calibrated_mks"].value  # a view the reader chose: kept
+    assert "calibrated MKS" in _numbers(view.summary.value)
+
+
+@pytest.mark.parametrize(
+    "changes, says",
+    [
+        ({"elevation_deg": 10.0}, "Elevation (deg) must lie in [15, 88] deg; got 10 deg"),
+        ({"speed_m_s": 3000.0}, "Muzzle speed (m/s) must lie in [1617.6, 2325.3] m/s; got 3000"),
+        ({"density_change_percent": -15.0}, "Day's density (%) must lie in [-10, 10]; got -15"),
+        (  # a custom round's band reaches 8.6 km/s: the 3DOF's flights would be cut short
+            {"projectile": "custom", "drag_area_m2": 1e-4, "speed_m_s": 7500.0},
+            "is not back on the ground within the 3DOF's 3000 s",
+        ),
+    ],
+)
+def test_the_calibrated_mks_refuses_what_its_table_does_not_cover_in_the_controls_words(
+    changes, says
+):
+    """Outside its band the calibrated MKS is a message naming the control by its label and
+    unit, before any table is learned (a table is never extrapolated); the rest still flies."""
+    launch = explorer.launch_for(replace(explorer.preset("Chapter 2 A: HP"), **changes))
+    looked_up = calibrated_mks._calibration.cache_info().misses
+    flown, messages = explorer.fly(launch, ["3DOF", "MKS", "calibrated MKS"])
+    assert calibrated_mks._calibration.cache_info().misses == looked_up  # nothing learned
+    assert "calibrated MKS" not in flown and "3DOF" in flown
+    refusal = [text for text in messages if text.startswith("The calibrated MKS cannot fly")]
+    assert len(refusal) == 1 and says in refusal[0], messages
+    assert not CODE_NAME.findall(refusal[0]), refusal
 
 
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])

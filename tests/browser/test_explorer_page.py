@@ -2,15 +2,17 @@
 `make explore`'s settings on a free loopback port and Debian's headless Chromium opens it
 through selenium, as a reader would: the elevation slider is moved from the keyboard (the plot
 and the numbers must change), presets are picked (the page must fly each exactly as named, its
-numbers those of the engines flown here directly), a bad value is typed and long messages are
-shown (in the controls' words, wrapped inside the page). A screenshot goes to
-$HARP_ANALYSIS_SCREENSHOT_DIR, else to the test's temporary folder.
+numbers those of the engines flown here directly), the calibrated MKS is ticked (its row the
+engine's numbers), a bad value is typed and long messages are shown (in the controls' words,
+wrapped inside the page). A screenshot goes to $HARP_ANALYSIS_SCREENSHOT_DIR, else to the
+test's temporary folder.
 
 Skipped when Debian's chromium or chromium-driver is missing, unless
 HARP_ANALYSIS_REQUIRE_BROWSER=1 (CI, `make check-browser`), which makes that a failure."""
 
 import os
 import re
+import warnings
 from pathlib import Path
 from typing import NamedTuple
 
@@ -19,6 +21,8 @@ from selenium.webdriver.common.by import By
 from selenium.webdriver.common.keys import Keys
 from selenium.webdriver.support.ui import Select, WebDriverWait
 
+from harp_analysis.engines import calibrated_mks
+from harp_analysis.foundation.validation import ModelValidityWarning
 from harp_analysis.reporting import explorer
 
 # Bounds on waiting, never asserted times (conftest's FIRST_DRAW_S for the first draw).
@@ -187,6 +191,47 @@ def test_a_preset_picked_in_the_page_flies_exactly_as_named(page, name):
         assert float(box(page, field).get_attribute("value")) == pytest.approx(
             getattr(setting, field), rel=1e-12, abs=1e-12
         ), field
+
+
+def test_ticking_the_calibrated_mks_draws_it_with_the_engines_numbers(page):
+    """Another view of the same launch: ticked, the plot is drawn again (its series added) and
+    the calibrated MKS's row holds the engine's numbers, flown here directly. Flying it here
+    first learns the still Earth's HP table (a second or two) and keeps it on disk, where the
+    page's kernel finds it; unticked, the row goes, as the other tests expect."""
+    name = "Chapter 2 A: HP"
+    engines = flown_here(name)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelValidityWarning)  # its wind, shown in the page
+        table = calibrated_mks.simulate_calibrated_mks(explorer.launch_for(explorer.preset(name)))
+    expected = {
+        **engines,
+        "calibrated MKS": (table.attrs["apogee_altitude_m"] / 1e3, table.attrs["range_m"] / 1e3),
+    }
+    Select(page.find_element(By.CSS_SELECTOR, ".harp-preset select")).select_by_visible_text(name)
+    before = wait_for(
+        page,
+        lambda seen: seen.preset == name and matches(seen, engines),
+        f"{name}: not the engines' numbers",
+    )
+    calibrated = page.find_element(By.CSS_SELECTOR, ".harp-calibrated_mks input")
+    assert not calibrated.is_selected()
+    calibrated.click()
+    seen = wait_for(
+        page,
+        lambda seen: (
+            "calibrated MKS" in seen.numbers_km_s and seen.plot_source != before.plot_source
+        ),
+        f"{name}: the calibrated MKS's row and series did not come",
+    )
+    assert matches(seen, expected), (seen.numbers_km_s, expected)
+    assert seen.preset == name
+    assert 'the calibrated MKS ignores "Cross wind (m/s)" = 5' in seen.messages, seen.messages
+    calibrated.click()
+    wait_for(
+        page,
+        lambda seen: "calibrated MKS" not in seen.numbers_km_s,
+        f"{name}: the calibrated MKS's row did not go",
+    )
 
 
 # Whether any part of the explorer is wider than its box (a long message that does not wrap),

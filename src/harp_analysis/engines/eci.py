@@ -88,6 +88,7 @@ __all__ = [
     "correction_for_launch",
     "solution_for_launch",
     "site_surface_speed_km_s",
+    "flight_plane",
     "inertial_positions",
     "simulate_eci_mks",
     "TIME_GRID_POINTS",
@@ -753,14 +754,20 @@ def site_surface_speed_km_s(site: str) -> float:
     return float(np.linalg.norm(surface_velocity(get_site(site).latitude_rad))) / 1e3
 
 
+def flight_plane(launch: LaunchCorrection, latitude_rad) -> tuple[np.ndarray, np.ndarray]:
+    """The plane of the ECI MKS of each corrected launch in the inertial frame at longitude 0:
+    unit vectors (3, n) up at the launch point and along the launch velocity's horizontal part
+    (``latitude_rad`` one, or one per launch)."""
+    up = np.reshape(launch_frame(np.ravel(latitude_rad), 0.0, 0.0)[0], (3, -1))
+    velocity = np.reshape(launch.velocity_m_s, (3, -1))
+    along = velocity - np.sum(velocity * up, axis=0) * up
+    return np.broadcast_to(up, along.shape), along / np.linalg.norm(along, axis=0)
+
+
 def _flight_plane(launch: LaunchCorrection, latitude_rad: float) -> tuple[np.ndarray, np.ndarray]:
-    """The plane of a single-launch ECI MKS in the inertial frame at longitude 0: unit vectors
-    (3,) up at the launch point and along the launch velocity's horizontal part."""
-    up = np.ravel(launch_frame(latitude_rad, 0.0, 0.0)[0])
-    velocity = np.ravel(launch.velocity_m_s)
-    along = velocity - (velocity @ up) * up
-    along /= np.linalg.norm(along)
-    return up, along
+    """:func:`flight_plane` of a single launch: unit vectors (3,)."""
+    up, along = flight_plane(launch, latitude_rad)
+    return up[:, 0], along[:, 0]
 
 
 def inertial_positions(

@@ -16,10 +16,20 @@ recorded and shown, never silenced.
 The 3DOF, the 6DOF and MLT are the engines of :mod:`harp_analysis.engines.catalogue`, under its
 labels (the 6DOF and MLT are its engines for Appendix B's rigid bodies). The MKS here is the text's
 (Chapter 5's ECI MKS where the Earth turns, its table
-:func:`harp_analysis.engines.eci.simulate_eci_mks`), the improved one on request; the HARP
+:func:`harp_analysis.engines.eci.simulate_eci_mks`), the improved one and the calibrated one
+(:func:`harp_analysis.engines.calibrated_mks.simulate_calibrated_mks`) on request; the HARP
 presets fly the Martlet as Chapter 6 models it
 (:func:`harp_analysis.analyses.harp.apogees.martlet`), with Yuma's thinner air as the day's density
 change.
+
+The calibrated MKS learns a table for each gun (projectile, latitude, atmosphere, day's
+temperature, turning Earth or not) from its 3DOF flights the first time it is asked for it: a
+second or two on a still Earth, several on a turning one (up to half a minute on a busy
+machine), said in a message while it learns. The table is kept on disk and, in the kernel,
+for the last 16 guns (:func:`~harp_analysis.engines.calibrated_mks.calibration_for`): at most
+about 7 MB each where the Earth turns, under 1 MB where it does not, so a page's kernel grows by
+130 MB at most (measured). A launch outside the table's band is refused in the controls' words
+before any table is learned (:func:`_check_calibrated_band`), never extrapolated.
 """
 
 from __future__ import annotations
@@ -40,8 +50,9 @@ from matplotlib.figure import Figure
 
 from ..analyses import mks_improvement
 from ..analyses.harp import apogees
-from ..engines import catalogue, eci, mks, mks_improved
+from ..engines import calibrated_mks, catalogue, eci, flight_grid, mks, mks_improved
 from ..foundation import earth
+from ..foundation.validation import ModelValidityWarning
 from ..models.atmosphere import ATMOSPHERE_NAMES, SEA_LEVEL_DENSITY_KG_M3
 from ..models.drag import ExponentialDragLaw
 from ..models.launch import BOUNDS, HP_CHAPTER_2, LP_CHAPTER_2, Bounds, Launch, baseline_chapter_4
@@ -73,10 +84,16 @@ PROJECTILES = ("HP", "LP", "baseline", "Martlet", "custom")
 _REFERENCE = catalogue.get_engine("3dof")
 #: The catalogue's engines for Appendix B's projectiles (HP and LP), flown on request.
 _RIGID_BODY = {engine.label: engine for engine in catalogue.ENGINES.values() if engine.rigid_body}
+#: The calibrated MKS's label, its engine's.
+_CALIBRATED = calibrated_mks.ENGINE
 #: The engines in the order they are drawn: the 3DOF and the MKS always, the rest on request. The
-#: MKS is the text's and the improved MKS Chapter 7 C's (:mod:`.mks_improved`, sampled here);
-#: the others are the catalogue's, under its labels.
-ENGINES = (_REFERENCE.label, "MKS", "improved MKS", *_RIGID_BODY)
+#: MKS is the text's, the improved MKS Chapter 7 C's (:mod:`.mks_improved`, sampled here) and the
+#: calibrated MKS the text's corrected by a table learned from the gun's 3DOF flights
+#: (:mod:`.calibrated_mks`); the others are the catalogue's, under its labels.
+ENGINES = (_REFERENCE.label, "MKS", "improved MKS", _CALIBRATED, *_RIGID_BODY)
+#: The other views of the same launch, by the checkbox (:class:`Settings` field) that asks for
+#: each.
+_VIEWS = {"improved_mks": "improved MKS", "calibrated_mks": _CALIBRATED}
 #: Beyond this beta no MKS is shown: the three-term series of its driving function at launch,
 #: e^{-2 beta} (eq 3.30), is then 1 against 0.135 (at the text's 0.25, 3 % off).
 MKS_SHOWN_BETA = 1.0
@@ -106,6 +123,7 @@ LABELS = {
     "diameter_m": "Diameter (m)",
     "drag_area_m2": "Cd0 A (m^2)",
     "improved_mks": "Also the improved MKS",
+    "calibrated_mks": "Also the calibrated MKS",
 }
 #: The fields a slider moves (min, max, step); the number box beside it holds the value.
 SLIDERS = {
@@ -153,6 +171,8 @@ _CODE_NAME = re.compile(
 _ALSO_WORDS = {"atmosphere"}
 _NAMED = {"HP": HP, "LP": LP, "baseline": BASELINE}
 _DRAW_DPI = 90
+#: The 3DOF's output step (s): the distance of each MKS from it is measured at its rows.
+_STEP_S = 0.5
 #: A message wraps at the width of the views, long words and code included.
 _WRAPPING = ' style="overflow-wrap: anywhere; white-space: normal; margin: 0.3em 0"'
 #: Cd0 A is shown to four significant digits: the drag tables and the Martlet's fit hold no
@@ -182,6 +202,7 @@ class Settings:
     diameter_m: float = 0.1
     drag_area_m2: float = 2.5e-3
     improved_mks: bool = False
+    calibrated_mks: bool = False
     measured_apogee_m: float | None = None
 
 
@@ -391,11 +412,6 @@ def _improved_mks(launch: Launch, three: pd.DataFrame) -> Flown:
             "altitude_m": np.linalg.norm(inertial, axis=1) - earth.RADIUS_M,
         }
     )
-    both = three[three.time_s <= solution.impact_time_s]
-    distance = np.linalg.norm(
-        both[["x_m", "y_m", "z_m"]].to_numpy() - solution.positions(both.time_s.to_numpy()),
-        axis=1,
-    )
     return Flown(
         "improved MKS",
         path,
@@ -403,9 +419,81 @@ def _improved_mks(launch: Launch, three: pd.DataFrame) -> Flown:
         solution.apogee_time_s,
         solution.impact_range_m[0],
         solution.impact_time_s,
-        pd.DataFrame({"time_s": both.time_s.to_numpy(), "distance_m": distance}),
+        _distance_to_3dof(three, solution.impact_time_s, solution.positions),
         float(solution.ascent.beta[0, 0] * solution.ascent.decay_scale[0, 0]),
     )
+
+
+def _calibrated_mks(launch: Launch, three: pd.DataFrame) -> Flown:
+    """The calibrated MKS (its table, :func:`.calibrated_mks.simulate_calibrated_mks`), with its
+    distance from the 3DOF; its gun's table learned on first use (seconds), refused first
+    where it would not hold (:func:`_check_calibrated_band`)."""
+    _check_calibrated_band(launch)
+    calibration = calibrated_mks.calibration_for(launch)
+    table = calibrated_mks.simulate_calibrated_mks(launch, calibration=calibration)
+    solution = calibrated_mks.solution_for_launch(launch, calibration)
+    return replace(
+        _from_table(_CALIBRATED, table),
+        error_to_3dof=_distance_to_3dof(three, solution.time_of_flight_s, solution.positions),
+    )
+
+
+#: The slack :meth:`.flight_grid.Band.check` allows at the band's edges, in the band's units (a
+#: speed factor, degrees, a fraction).
+_BAND_SLACK = 1e-12
+
+
+def _check_calibrated_band(launch: Launch) -> None:
+    """A ValueError in the controls' words and units where the calibrated MKS would not hold,
+    checked before its gun's table is learned (the engine learns it, seconds, before it checks
+    the band): ``launch`` outside the band the table covers
+    (:data:`.calibrated_mks.BAND`, checked again by the engine), or the band's longest flight
+    (its fastest and steepest, on its thinnest day, eastward) not back on the ground within
+    the 3DOF's time limit: the table would learn flights cut short."""
+    band = calibrated_mks.BAND
+    nominal = launch.projectile.launch_speed_m_s
+    edges = {  # the band's edges, and their factor to the Launch field's unit
+        "speed_m_s": (band.speed_factors, nominal),
+        "elevation_deg": (band.elevations_deg, 1.0),
+        "density_change_percent": (band.density_changes, 1.0),
+    }
+    for name, ((low, high), to_field) in edges.items():
+        field, scale = _LAUNCH_FIELDS[name]
+        inside = Bounds(
+            low=(low - _BAND_SLACK) * to_field * scale,
+            high=(high + _BAND_SLACK) * to_field * scale,
+            unit=BOUNDS[field].unit,
+        )
+        try:
+            inside.number(getattr(launch, field) * scale, LABELS[name])
+        except ValueError as error:
+            raise ValueError(
+                f"outside the band of launches its table covers: {error} (a table is never "
+                "extrapolated)"
+            ) from None
+    longest = flight_grid.Gun.of(launch).launches(
+        band.speed_factors[1], band.elevations_deg[1], 90.0, band.density_changes[0]
+    )[0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelValidityWarning)
+        flight = _REFERENCE.fly(longest, output_step_s=_STEP_S)
+    if not flight.attrs["impact"]:
+        raise ValueError(
+            f'the longest flight of its band ("{LABELS["speed_m_s"]}" = {longest.speed_m_s:g}, '
+            f'"{LABELS["elevation_deg"]}" = {band.elevations_deg[1]:g}, '
+            f'"{LABELS["density_change_percent"]}" = {100 * band.density_changes[0]:g}) is not '
+            f"back on the ground within the 3DOF's {flight.attrs['time_of_flight_s']:g} s: its "
+            "table learns only from whole flights"
+        )
+
+
+def _distance_to_3dof(three: pd.DataFrame, time_of_flight_s: float, positions) -> pd.DataFrame:
+    """An MKS's distance from the 3DOF (its table ``three``) at the 3DOF's times within the
+    MKS's flight; ``positions`` gives the MKS's (k, 3) at times (k,), in the 3DOF's frame."""
+    both = three[three.time_s <= time_of_flight_s]
+    times = both.time_s.to_numpy()
+    distance = np.linalg.norm(both[["x_m", "y_m", "z_m"]].to_numpy() - positions(times), axis=1)
+    return pd.DataFrame({"time_s": times, "distance_m": distance})
 
 
 def _launch_axes(launch: Launch) -> tuple[np.ndarray, np.ndarray]:
@@ -424,7 +512,7 @@ def fly(launch: Launch, engines=ENGINES[:2]) -> tuple[dict[str, Flown], list[str
     messages: list[str] = []
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        three = _REFERENCE.fly(launch, output_step_s=0.5)
+        three = _REFERENCE.fly(launch, output_step_s=_STEP_S)
         flown[_REFERENCE.label] = _from_table(_REFERENCE.label, three)
         for engine in engines:
             if engine == _REFERENCE.label:
@@ -436,6 +524,8 @@ def fly(launch: Launch, engines=ENGINES[:2]) -> tuple[dict[str, Flown], list[str
                     flown[engine] = _from_table(engine, _RIGID_BODY[engine].fly(launch))
                 elif engine == "MKS":
                     flown[engine] = _eci_mks(launch, three)
+                elif engine == _CALIBRATED:
+                    flown[engine] = _calibrated_mks(launch, three)
                 else:
                     flown[engine] = _improved_mks(launch, three)
             except (ValueError, TypeError, ArithmeticError) as error:
@@ -448,6 +538,12 @@ def fly(launch: Launch, engines=ENGINES[:2]) -> tuple[dict[str, Flown], list[str
     not_shown = (
         f"beyond beta = {MKS_SHOWN_BETA:g} the three-term series of the drag's driving function "
         "(eq 3.30) is off by a factor of seven or more, so no MKS is shown"
+        + (
+            " but the calibrated one, whose table learned what the series misses from this "
+            "gun's 3DOF flights"
+            if _CALIBRATED in flown
+            else ""
+        )
     )
     for warning in caught:  # the models' own warnings, not numpy's arithmetic on the way
         text = in_readers_words(str(warning.message))
@@ -576,6 +672,7 @@ class Explorer:
         self.settings = preset(preset_name)
         self._holding = False
         self._rigid_body = False
+        self._calibrated_gun: flight_grid.Gun | None = None  # the last the calibrated MKS flew
         self.last_flown: dict[str, Flown] = {}
         style = {"description_width": "150px"}
         layout = dict(style=style, layout=w.Layout(width="380px"))
@@ -621,7 +718,7 @@ class Explorer:
                 name: w.FloatText(description=LABELS[name], **layout)
                 for name in ("spin_rad_s", "mass_kg", "diameter_m", "drag_area_m2")
             },
-            "improved_mks": w.Checkbox(description=LABELS["improved_mks"], **layout),
+            **{name: w.Checkbox(description=LABELS[name], **layout) for name in _VIEWS},
         }
         self.rigid_body = w.Button(
             description=f"Fly the {' and '.join(_RIGID_BODY)} too", layout=w.Layout(width="380px")
@@ -644,8 +741,8 @@ class Explorer:
             self._couple(slider, self.controls[name])
         self._show(self.settings)
         for name, control in self.controls.items():
-            # the improved MKS is another view of the same launch, not another launch
-            control.observe(self.update if name == "improved_mks" else self._changed, names="value")
+            # another MKS is another view of the same launch, not another launch
+            control.observe(self.update if name in _VIEWS else self._changed, names="value")
         self.preset.observe(self._preset_chosen, names="value")
         self.rigid_body.on_click(self._fly_rigid_body)
         rows = [
@@ -743,8 +840,8 @@ class Explorer:
     def _preset_chosen(self, change) -> None:
         if self._holding or change["new"] not in self._presets:
             return
-        improved = self.controls["improved_mks"].value  # a view the reader chose: kept
-        self.settings = replace(self._presets[change["new"]], improved_mks=improved)
+        views = {name: self.controls[name].value for name in _VIEWS}  # the reader's: kept
+        self.settings = replace(self._presets[change["new"]], **views)
         self._show(self.settings)
         self._rigid_body = False
         self.update()
@@ -753,20 +850,40 @@ class Explorer:
         self._rigid_body = True
         self.update()
 
+    def _say_what_is_learned(self, launch: Launch, engines: list[str]) -> None:
+        """A message while a view learns what it needs first (seconds): the improved MKS its
+        fit, once; the calibrated MKS the table of a gun other than the last one it flew. The
+        message is then replaced by the flight's: it only flashes where the table is loaded
+        (milliseconds, learned before) or the launch refused."""
+        learning = []
+        if "improved MKS" in engines and not mks_improvement.calibration.cache_info().currsize:
+            learning.append(
+                "Fitting the improved MKS on its training launches (once, a few seconds)."
+            )
+        if _CALIBRATED in engines and (gun := flight_grid.Gun.of(launch)) != self._calibrated_gun:
+            flights = math.prod(axis.size for axis in flight_grid.DEFAULT_GRID.axes(gun))
+            learning.append(
+                f"Finding the calibrated MKS's table for this gun: learned from its {flights} "
+                "3DOF flights the first time (seconds, up to half a minute where the Earth "
+                "turns), kept in memory and on disk after. Another projectile (the Martlet's "
+                "and a custom one's muzzle speed included), latitude, atmosphere, day's "
+                "temperature, or the Earth turning or not, is another gun."
+            )
+        if learning:
+            self.messages.value = messages_html(learning)
+
     def update(self, _change=None) -> None:
         """Fly the launch the controls describe and show it; a message, never a traceback."""
         self.settings = self._read()
-        engines = list(ENGINES[:2])
-        if self.settings.improved_mks:
-            engines.append("improved MKS")
-            if not mks_improvement.calibration.cache_info().currsize:
-                self.messages.value = messages_html(
-                    ["Fitting the improved MKS on its training launches (once, a few seconds)."]
-                )
+        engines = [
+            *ENGINES[:2],
+            *(view for name, view in _VIEWS.items() if getattr(self.settings, name)),
+        ]
         if self._rigid_body:
             engines += list(_RIGID_BODY)
         try:
             launch = launch_for(self.settings)
+            self._say_what_is_learned(launch, engines)
             flown, messages = fly(launch, engines)
         except (ValueError, TypeError, ArithmeticError) as error:
             self.last_flown = {}
@@ -775,6 +892,8 @@ class Explorer:
             self.messages.value = messages_html([f"This launch cannot be flown: {error}"])
             return
         self._describe(launch)
+        if _CALIBRATED in flown:
+            self._calibrated_gun = flight_grid.Gun.of(launch)
         self.last_flown = flown
         self.plot.value = draw(flown)
         self.summary.value = summary_html(flown, self.settings.measured_apogee_m)

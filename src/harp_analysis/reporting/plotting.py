@@ -5,10 +5,11 @@ Styles. Series are told apart without colour, and each colour means one thing ac
 
 - the model or engine has a colour of the Okabe-Ito palette (safe for colour-blind readers)
   and a line style: 3DOF solid blue, 6DOF dashed orange, MLT dash-dot green, MKS dotted
-  vermillion (the project's improved MKS sky blue, dash-dot-dotted); a quantity of one model
-  (its air, its error, its series length) takes that model's colour; black is measured data and
-  the exact references a figure is read against (the 1976 standard atmosphere, a straight
-  line, conical-flow values), grey the text's own values and formulas;
+  vermillion (the project's improved MKS sky blue, dash-dot-dotted; the calibrated MKS
+  vermillion and the fly-out table blue, both dashed, their dashes their own); a quantity of
+  one model (its air, its error, its series length) takes that model's colour; black is
+  measured data and the exact references a figure is read against (the 1976 standard
+  atmosphere, a straight line, conical-flow values), grey the text's own values and formulas;
 - the projectile has a marker: HP circle, LP square, the baseline cone triangle;
 - the gun elevation has a shade of reddish purple, light to dark from 30 to 85 deg, and a
   marker of its own; such curves are also labelled directly (:func:`label_lines`).
@@ -111,6 +112,10 @@ ENGINE_STYLES: dict[str, dict[str, Any]] = {
     "MKS": {"color": OKABE_ITO["vermillion"], "linestyle": ":"},
     # the project's improved MKS (harp_analysis.engines.mks_improved), beside the text's
     "improved MKS": {"color": OKABE_ITO["sky blue"], "linestyle": (0, (6, 2, 1, 2, 1, 2))},
+    # the learned tables of a gun: the MKS corrected by the 3DOF's flights takes the MKS's
+    # colour, the 3DOF's flights tabulated the 3DOF's; both dashed, their own dashes
+    "calibrated MKS": {"color": OKABE_ITO["vermillion"], "linestyle": (0, (5, 2))},
+    "fly-out table": {"color": OKABE_ITO["blue"], "linestyle": (0, (9, 2, 2, 2))},
     "measured": {"color": OKABE_ITO["black"], "linestyle": "none", "marker": "o"},
     "text": {"color": OKABE_ITO["grey"], "linestyle": "none", "marker": "x"},
 }
