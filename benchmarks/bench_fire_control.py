@@ -12,13 +12,13 @@
 
 The references, measured in the same run. **One converged 3DOF intercept**: the middle feasible
 intercept of the first target refined by the 3DOF alone from its MKS root to under 1 m, the
-same Newton-Broyden shooting the raid's verification runs on all roots at once, for one root
-(from the drag-free conic the 3DOF shooting does not converge on this ascending branch; a start
-from the MKS only makes the reference cheaper, in the claims' favour). **One 3DOF flight**: the
-3DOF flown once at that root to the target's altitude. Printed with each: its flights,
-right-hand-side evaluations and miss. The MKS solutions are checked against the 3DOF (every
-converged verification lands within 1 m of its aim) and a one-by-one solve of a few targets
-gives the batch's answers.
+same shooting the raid's verification runs on all roots at once (Newton-Broyden, and the search
+of the 3DOF's branch where that stalls), for one root (from the drag-free conic the 3DOF
+shooting does not converge on this ascending branch; a start from the MKS only makes the
+reference cheaper, in the claims' favour). **One 3DOF flight**: the 3DOF flown once at that
+root to the target's altitude. Printed with each: its flights, right-hand-side evaluations and
+miss. The MKS solutions are checked against the 3DOF (every converged verification lands
+within 1 m of its aim) and a one-by-one solve of a few targets gives the batch's answers.
 
 Targets (issue 24): MKS both roots <= 0.2 ms per target at N = 5,000 on one core, the whole
 raid <= 1 s (moonshot 50 us per target); verified raid <= 2 ms per intercept, <= 10 s.
@@ -147,15 +147,23 @@ def _raid(smoke: bool, targets: int, times: int) -> None:
         f"{verified_s / intercepts * 1e3:.3f} ms per intercept; target 2 ms: "
         f"{verdict(verified_s / intercepts, 2e-3)}; "
         f"{int(converged.sum())} of {len(roots)} roots landed within {LANDED_M:g} m in "
-        f"{flights[converged].mean():.2f} flights each (max {flights[converged].max()}), "
-        f"{verify_s / max(len(roots), 1) * 1e3:.2f} ms a root"
+        f"{flights[converged].mean():.2f} flights each (max {flights[converged].max()}; "
+        f"{flights.mean():.2f} a root over all), {verify_s / max(len(roots), 1) * 1e3:.2f} ms "
+        "a root"
     )
     if (~converged).any():
+        # the roots missing by their reasons' words before the numbers, the first in full
+        missing: dict[str, list[str]] = {}
+        for shot in verified:
+            if not shot.converged:
+                missing.setdefault(shot.message.split(":")[0], []).append(shot.message)
         print(
-            f"    {int((~converged).sum())} roots have no 3DOF root near the MKS's (the 3DOF at "
-            f"it fell short of the target's altitude for {int((~reached).sum())}): "
-            f"{verified[int(np.flatnonzero(~converged)[0])].message}"
+            f"    {int((~converged).sum())} roots missing, with the 3DOF's reason (the 3DOF at "
+            f"the MKS's root fell short of the target's altitude for {int((~reached).sum())} of "
+            f"all {len(roots)}):"
         )
+        for messages in sorted(missing.values(), key=len, reverse=True):
+            print(f"      {len(messages)}: {messages[0]}")
     print(
         f"  the MKS's miss, the 3DOF flown at its roots: median {np.median(mks_miss[reached]):.0f}"
         f" m, 95th percentile {np.percentile(mks_miss[reached], 95):.0f} m, max "

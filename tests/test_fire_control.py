@@ -1,6 +1,7 @@
 """Fire control against closed forms (the vacuum conic), the exact vacuum case on a rotating
 Earth, the 3DOF itself, and bad input."""
 
+import dataclasses
 import math
 import re
 import warnings
@@ -227,6 +228,23 @@ def test_a_solution_the_3dof_falls_short_of_is_raised_quietly_onto_the_target():
         warnings.simplefilter("error", EndAltitudeNotCrossedWarning)
         check = verify_with_3dof(ROTATING, target, low)
     assert check.mks_miss_m == math.inf and check.converged and check.elevation_change_deg > 0
+
+
+def test_a_newton_step_past_the_vertical_is_flown_at_it_and_the_branch_searched():
+    """A first Jacobian that all but ignores the elevation (the Barbados case's low root's, its
+    elevation column shrunk 10^4 times) sends Newton's first step far past the vertical: the
+    gun is laid at 90 deg, never beyond, and the Jacobian differenced there, zero (a step of
+    either angle flies the same shot), ends Newton's method without a step (numpy raised
+    LinAlgError on it before); the search of the branch, on the MKS root's side of the maximum
+    range, then lands it on the root the true Jacobian leads to."""
+    gun, target = barbados_case()
+    low = firing_solutions(gun, target).low
+    jacobian = low.jacobian_m_rad.copy()
+    jacobian[:, 0] *= 1e-4
+    check = verify_with_3dof(gun, target, dataclasses.replace(low, jacobian_m_rad=jacobian))
+    assert check.converged, check
+    expected = verify_with_3dof(gun, target, low).elevation_deg
+    assert check.elevation_deg == pytest.approx(expected, abs=1e-4), check
 
 
 def test_fire_time_is_the_arrival_time_less_the_time_of_flight():

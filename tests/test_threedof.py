@@ -505,6 +505,30 @@ def test_a_grazing_shot_asked_to_end_above_it_lands_where_it_would(rising):
     assert flights.range_m[0] == pytest.approx(conic.ground_range_m, rel=1e-3, abs=0.03)
 
 
+def test_a_flight_that_tops_out_just_above_its_end_altitude_rises_through_it():
+    """However little its apogee clears its end altitude, a flight asked to end where it rises
+    through it does, before its apogee, at that altitude; a millimetre above the apogee it
+    never does. The apogee is the same launch's, flown down to the ground. (A step over the
+    apogee sags tens of metres below it: stepped over unseen, such crossings came out as shots
+    that never got there, and fire control's ascending roots near grazing were lost.)"""
+    launch = BASELINE_45.but(elevation_deg=20.0)
+    plain = threedof.fly_3dof(launch)
+    top, top_time = plain.apogee_altitude_m[0], plain.apogee_time_s[0]
+    clearances = np.geomspace(1e-3, 200.0, 60)  # m below the apogee
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", trajectory.EndAltitudeNotCrossedWarning)
+        flights = threedof.fly_3dof(
+            [launch] * clearances.size, end_altitude_m=top - clearances, rising=True
+        )
+    assert flights.impact.all(), clearances[~flights.impact]
+    radii = np.linalg.norm(flights.end_position_m, axis=0)
+    assert radii - earth.RADIUS_M == pytest.approx(top - clearances, abs=1e-4)
+    assert (flights.time_of_flight_s < top_time).all()
+    with pytest.warns(trajectory.EndAltitudeNotCrossedWarning, match="never climbs"):
+        above = threedof.fly_3dof(launch, end_altitude_m=top + 1e-3, rising=True)
+    assert not above.impact[0]
+
+
 def test_a_batch_names_the_launches_that_never_cross_their_end_altitude():
     """Per launch: the 20 deg shot (apogee about 20 km) never comes down through 50 km, the
     70 deg one never climbs through 500 km; the others end at their crossings as if flown

@@ -78,6 +78,7 @@ __all__ = [
     "simulate_3dof_batch",
     "fly_3dof",
     "Flights",
+    "Layings",
     "counted_functions",
     "warm_up",
 ]
@@ -185,10 +186,13 @@ def _crosses(level, sign, y, y_new):
 @jit(inline=True)
 def _apogee_cut(level, t, hi, y, y_new, a, a_new, work):
     """The step (s) up to the apogee where the step from ``y`` starts on or below ``level``,
-    turns over and ends below it, else 0: a flight that starts on its level and turns over
-    within the step (a shot a hundredth of a degree above the horizon rises millimetres) would
-    cross the level twice unseen; cut at the apogee, the fall from it is a crossing. A turn at
-    the step's very end needs no cut: cut there, the same step would be tried again for ever."""
+    turns over and ends below it, else 0: such a step may cross the level twice unseen. A
+    flight that starts on its level and turns over within the step (a shot a hundredth of a
+    degree above the horizon rises millimetres) falls through it from the apogee; one that
+    tops out just above it (a step over the apogee of a flight ending where it rises through
+    the level sags tens of metres below it) rises through it on the way to the apogee. A
+    turn at the step's very end needs no cut: cut there, the same step would be tried again
+    for ever."""
     above, after = event_value(ALTITUDE, level, y), event_value(ALTITUDE, level, y_new)
     turns = event_value(RADIAL_VELOCITY, 0.0, y) > 0 >= event_value(RADIAL_VELOCITY, 0.0, y_new)
     if above < _ON_LEVEL_M and after < 0 and turns:
@@ -265,9 +269,9 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
                 if fraction * hi > MIN_CUT_S and fraction < 1 - STRADDLE:
                     accept = False
                     h = hi * fraction * (1 - 2 * STRADDLE)
-        if math.isnan(stop_t):  # the levels a flight falls through to its end
-            for level, falls in ((end_m, end_sign > 0), (ground_m, grounded)):
-                cut = _apogee_cut(level, t, hi, y, y_new, a, a_new, work) if falls else 0.0
+        if math.isnan(stop_t):  # the levels a flight may end at, either way for the end level
+            for level, ends in ((end_m, True), (ground_m, grounded)):
+                cut = _apogee_cut(level, t, hi, y, y_new, a, a_new, work) if ends else 0.0
                 if cut > MIN_CUT_S:
                     accept = False
                     h = cut
@@ -648,27 +652,35 @@ def fly_3dof(
     rtol, max_time_s = _numerics(rtol, max_time_s)
     batch = _batch(launches)
     count = batch.columns.shape[1]
-    if end_altitude_m is None:
-        ends = np.array([batch.site_m])
-    else:
-        ends = finite_array(end_altitude_m, "end_altitude_m")
-        # no ground lies below the lowest site
-        check_range(ends, "end_altitude_m", low=BOUNDS["site_altitude_m"].low, unit="m")
-        ends = _per_launch(ends, count)
-    directions = np.asarray(rising)
-    if directions.dtype != bool:
-        raise TypeError(f"rising must be True, False or an array of them; got {rising!r:.80}")
-    rising = _per_launch(directions, count)
-    summary, counts, *_ = _fly(batch, max_time_s, rtol, record=False, end=ends, rising=rising)
-    outcomes = summary[7].astype(int)
-    apogee_t, apogee, apogee_ground, end_t, ground, cross_range, speed = summary[:7]
-    grounded = np.flatnonzero(outcomes == _GROUND)
+    ends, rising = _ends(batch.site_m if end_altitude_m is None else end_altitude_m, rising, count)
+    flights = _flights(*_fly(batch, max_time_s, rtol, record=False, end=ends, rising=rising)[:2])
+    grounded = np.flatnonzero(flights.stop_reason == "ground_before_end")
     if grounded.size:
         warnings.warn(
-            _not_crossed(grounded, count, ends, rising, apogee, batch.site_m),
+            _not_crossed(grounded, count, ends, rising, flights.apogee_altitude_m, batch.site_m),
             EndAltitudeNotCrossedWarning,
             stacklevel=2,
         )
+    return flights
+
+
+def _ends(end_altitude_m, rising, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """The end altitudes (m) and directions of ``count`` flights, each one for every flight or
+    one per flight, as flat arrays; else an error naming the argument."""
+    ends = finite_array(end_altitude_m, "end_altitude_m")
+    # no ground lies below the lowest site
+    check_range(ends, "end_altitude_m", low=BOUNDS["site_altitude_m"].low, unit="m")
+    directions = np.asarray(rising)
+    if directions.dtype != bool:
+        raise TypeError(f"rising must be True, False or an array of them; got {rising!r:.80}")
+    return _per_launch(ends, count), _per_launch(directions, count)
+
+
+def _flights(summary: np.ndarray, counts: np.ndarray) -> Flights:
+    """The :class:`Flights` of the compiled flights' ``summary`` (14, n) and ``counts`` (4, n)
+    (:func:`_fly`)."""
+    outcomes = summary[7].astype(int)
+    apogee_t, apogee, apogee_ground, end_t, ground, cross_range, speed = summary[:7]
     return Flights(
         apogee_t,
         apogee,
@@ -678,12 +690,84 @@ def fly_3dof(
         cross_range,
         speed,
         outcomes == _AT_END,
-        np.asarray(STOP_REASONS)[outcomes],
+        _STOP_REASONS[outcomes],
         counts[1],
         counts[0],
         summary[8:11],
         summary[11:14],
     )
+
+
+_STOP_REASONS = np.asarray(STOP_REASONS)
+
+
+class Layings:
+    """One gun's 3DOF flights at many layings (elevation and bearing), flown again and again
+    as a shooting method iterates: the gun and the integrator's settings are validated once,
+    here, and each :meth:`fly` checks only what it is given (vectorised, no :class:`Launches`
+    built), so a batch of a few flights costs little more than the flights.
+
+    Parameters
+    ----------
+    gun : Launch
+        The launch whose elevation and bearing each flight replaces.
+    rtol : float
+        The integrator's relative tolerance.
+    max_time_s : float
+        The longest flight (s).
+    """
+
+    def __init__(self, gun: Launch, *, rtol: float = 1e-9, max_time_s: float = 3000.0):
+        if not isinstance(gun, Launch):
+            raise TypeError(
+                f"gun must be a harp_analysis.models.launch.Launch; got {type(gun).__name__}"
+            )
+        self._rtol, self._max_time_s = _numerics(rtol, max_time_s)
+        self._batch = _batch(gun)
+
+    def fly(self, elevation_rad, bearing_rad, end_altitude_m, rising) -> Flights:
+        """:func:`fly_3dof` of the gun laid at each elevation (rad, in (0, pi/2]) and bearing
+        (rad from true north, any turn) of the arrays (k,), each to its end altitude (m) rising
+        or falling through it (one for all or (k,) each), but quietly: a flight that never
+        crosses its end altitude has ``impact`` False and no warning (a shooting method expects
+        them).
+
+        Parameters
+        ----------
+        elevation_rad, bearing_rad : numpy.ndarray
+            The layings (k,), rad.
+        end_altitude_m : float or numpy.ndarray
+            Where each flight ends (m): one for every flight or one each (k,).
+        rising : bool or numpy.ndarray
+            For every flight or one each (k,): end where it rises through its end altitude.
+
+        Returns
+        -------
+        Flights
+            Apogee and end of every flight as arrays (k,), SI units.
+        """
+        elevation = np.ravel(finite_array(elevation_rad, "elevation_rad"))
+        bearing = np.ravel(finite_array(bearing_rad, "bearing_rad"))
+        if bearing.shape != elevation.shape or not elevation.size:
+            raise ValueError(
+                "elevation_rad and bearing_rad must be arrays of one length (k,), k > 0; got "
+                f"shapes {np.shape(elevation_rad)} and {np.shape(bearing_rad)}"
+            )
+        outside = ~((elevation > 0.0) & (elevation <= 0.5 * math.pi))
+        if outside.any():
+            index = int(np.flatnonzero(outside)[0])
+            raise ValueError(
+                f"elevation_rad[{index}] must lie in (0, pi/2]; got {elevation[index]:g}"
+            )
+        count = elevation.size
+        ends, rising = _ends(end_altitude_m, rising, count)
+        columns = np.repeat(self._batch.columns, count, axis=1)
+        columns[_COLUMNS.index("elevation_deg")] = np.degrees(elevation)
+        columns[_COLUMNS.index("bearing_deg")] = np.degrees(bearing) % 360.0
+        laid = self._batch._replace(columns=columns)
+        return _flights(
+            *_fly(laid, self._max_time_s, self._rtol, record=False, end=ends, rising=rising)[:2]
+        )
 
 
 #: Launches a warning of flights that never crossed their end altitudes describes one by one.

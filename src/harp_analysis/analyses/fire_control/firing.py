@@ -42,6 +42,7 @@ __all__ = [
     "firing_solutions",
     "great_circle",
     "east_north",
+    "east_north_axes",
     "BRANCHES",
     "AT_GUN_M",
     "destination",
@@ -290,13 +291,19 @@ def great_circle(gun: Launch, target: TargetPoint) -> tuple[float, float]:
     return angle, bearing % (2 * math.pi)
 
 
-def east_north(difference, at) -> np.ndarray:
+def east_north(difference, at, axes=None) -> np.ndarray:
     """The east and north components (..., 2) of ``difference`` (..., 3) at the points ``at``
-    (..., 3)."""
+    (..., 3), whose :func:`east_north_axes` are ``axes`` if given."""
+    axes = east_north_axes(at) if axes is None else axes
+    return np.sum(np.asarray(difference)[..., None, :] * axes, axis=-1)
+
+
+def east_north_axes(at) -> np.ndarray:
+    """The unit vectors east and north (..., 2, 3) at the points ``at`` (..., 3)."""
     east = np.stack([-at[..., 1], at[..., 0], np.zeros_like(at[..., 0])], axis=-1)
     east /= np.linalg.norm(east, axis=-1, keepdims=True)
     north = np.cross(at / np.linalg.norm(at, axis=-1, keepdims=True), east)
-    return np.stack([np.sum(difference * east, -1), np.sum(difference * north, -1)], axis=-1)
+    return np.stack([east, north], axis=-2)
 
 
 def _elevation_deg(elevation_rad: float) -> str:
