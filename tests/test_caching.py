@@ -27,6 +27,11 @@ IMMUTABLE_RESULTS = {
     "foundation.compiled._digest": "a string",
     "reporting.explorer._typical_martlet_mass_kg": "a float",
     "analyses.fire_control.costs.raid_against_3dof_intercept": "a frozen RaidComparison",
+    "analyses.fire_control.model_comparison.calibrated_fire_control": (
+        "a frozen CalibratedFireControl of numbers"
+    ),
+    "analyses.fire_control.verification.clearance": "a float (one branch search's)",
+    "analyses.fire_control.verification.shoot": "a _Shot of numbers (one branch search's)",
     "analyses.harp.apogees.fit_drag_area_to_errors": "a tuple of three floats",
     "analyses.harp.apogees._drag_area_m2": "a float",
     "analyses.mks_improvement.calibration": "a frozen Calibration of one float",

@@ -13,6 +13,7 @@ from harp_analysis.engines import calibrated_mks, eci, flight_grid, threedof
 from harp_analysis.engines.flight_grid import Band, Grid, Gun
 from harp_analysis.foundation import earth
 from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.models import sites
 from harp_analysis.models.launch import Launch
 from harp_analysis.models.projectiles import BASELINE, HP, LP
 from harp_analysis.models.trajectory import rotate_about_axis
@@ -152,6 +153,73 @@ def test_on_the_turning_earth_its_impact_is_fixed_to_the_earth():
         np.array([-launch.rotation_rate_rad_s * flight.attrs["time_of_flight_s"]]),
     )[:, 0]
     assert np.linalg.norm(solution.impact_point_m - fixed) < 500.0  # the 3DOF's, off the grid
+
+
+# --- where it crosses an altitude ---------------------------------------------------------------
+#: HP from Barbados on the turning Earth, the gun fire control aims (its calibration shared).
+BARBADOS = Gun(
+    HP, latitude_deg=math.degrees(sites.BARBADOS.latitude_rad),
+    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+)  # fmt: skip
+
+
+@pytest.fixture(scope="module")
+def launches_between_nodes():
+    """Launches of the gun drawn at random within the calibrated band (none a grid node), each
+    with an altitude below its calibrated apogee and a branch."""
+    draws = np.random.default_rng(35)
+    count = 120
+    launches = BARBADOS.launches(
+        draws.uniform(0.8, 1.15, count),
+        draws.uniform(15.0, 88.0, count),
+        draws.uniform(0.0, 360.0, count),
+        draws.uniform(-0.1, 0.1, count),
+    )
+    solution = calibrated_mks.solution_for_launch(launches)
+    altitude = draws.uniform(0.0, 0.9, count) * solution.apogee_altitude_m
+    rising = draws.uniform(size=count) < 0.5
+    return launches, solution, altitude, rising
+
+
+def test_the_crossing_of_an_altitude_is_the_3dof_s(launches_between_nodes):
+    """Where the calibrated MKS crosses an altitude on its way up or down, at random off the
+    grid: on the altitude, on the branch's side of the apogee, and at the 3DOF's own crossing
+    (fly_3dof to that altitude) to what the table holds (a median of metres to tens of metres,
+    the worst a few hundred, descending high up), where the other branch's lies kilometres off."""
+    launches, solution, altitude, rising = launches_between_nodes
+    time, point = solution.crossing(altitude, rising)
+    radius = np.linalg.norm(point, axis=1)
+    assert np.max(np.abs(radius - earth.RADIUS_M - altitude)) < 1e-3
+    before = time < solution.apogee_time_s
+    assert np.array_equal(before, rising)
+    flight = threedof.fly_3dof(launches, end_altitude_m=altitude, rising=rising)
+    assert flight.impact.all()
+    distance = np.linalg.norm(point - flight.end_position_m.T, axis=1)
+    assert np.median(distance) < 50.0 and np.max(distance) < 1e3
+    assert np.median(np.abs(time - flight.time_of_flight_s)) < 0.1
+    other = solution.crossing(altitude, ~rising)[1]
+    assert np.median(np.linalg.norm(other - flight.end_position_m.T, axis=1)) > 10e3
+
+
+def test_the_crossing_ends_at_the_impact_and_is_nan_above_the_apogee(launches_between_nodes):
+    launches, solution, _, rising = launches_between_nodes
+    time, point = solution.crossing(0.0)
+    assert np.array_equal(point, solution.impact_point_m)
+    assert np.array_equal(time, solution.time_of_flight_s)
+    # the path's top lies within metres of the apogee, which is learned apart
+    time, point = solution.crossing(solution.apogee_altitude_m + 100.0, rising)
+    assert np.isnan(time).all() and np.isnan(point).all()
+    time, point = solution.crossing(solution.apogee_altitude_m - 100.0, rising)
+    assert np.isfinite(time).all() and np.isfinite(point).all()
+    one = calibrated_mks.solution_for_launch(launches[3])
+    halfway = 0.5 * one.apogee_altitude_m
+    single = one.crossing(halfway, True)
+    assert isinstance(single[0], float) and single[1].shape == (3,)
+    assert single[1] == pytest.approx(solution.crossing(halfway, True)[1][3], abs=1e-6)
+    with pytest.raises(ValueError, match="altitude_m must be >= 0"):
+        one.crossing(-1.0)
+    with pytest.raises(TypeError, match="rising must be True, False"):
+        one.crossing(10e3, "up")
 
 
 # --- its band --------------------------------------------------------------------------------

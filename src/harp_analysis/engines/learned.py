@@ -16,7 +16,8 @@ path at fractions of its flight. What follows from there is the same for both:
   Earth's axis;
 - :class:`LearnedSolution`: the outputs of a path given at fractions of each flight (inertial
   positions and velocities at longitude 0): the time of flight, the apogee (the largest
-  radius), the Earth-fixed impact point and its ranges, positions at given times, and
+  radius), the Earth-fixed impact point and its ranges, where the path crosses an altitude
+  (:meth:`LearnedSolution.crossing`), positions at given times, and
   :meth:`LearnedSolution.trajectory`, the engines' shared trajectory table.
 
 SI inside.
@@ -181,6 +182,50 @@ def turned(vectors: np.ndarray, angle_rad: np.ndarray) -> np.ndarray:
     return flat.T.reshape(vectors.shape)
 
 
+#: Illinois' method of :meth:`LearnedSolution.crossing` stops within this of the altitude (m:
+#: the radius's rounding, through an inverted time, is micrometres), or once its bracket is
+#: this narrow (a fraction of the flight: a picosecond of 300 s), or after this many steps.
+_FALSI_M = 1e-4
+_FALSI_WIDTH = 1e-15
+_FALSI_ITERATIONS = 60
+
+
+def _falsi(function, low, f_low, high, f_high, active) -> np.ndarray:
+    """Row by row, where ``function`` (of points (n,): values (n,)) vanishes in [low, high],
+    its values at the ends ``f_low`` and ``f_high`` of opposite signs (or one of them zero),
+    by Illinois' method (regula falsi, the value at an end kept twice in a row halved), every
+    row ``active`` at once, to :data:`_FALSI_M` of the value or :data:`_FALSI_WIDTH` of the
+    bracket; an inactive row's answer is its ``low`` where ``f_low`` vanishes, else its
+    ``high``."""
+    low, high, f_low, f_high = (np.array(a, dtype=float) for a in (low, high, f_low, f_high))
+    point = np.where(np.abs(f_low) <= _FALSI_M, low, high)
+    active = active & (np.abs(f_low) > _FALSI_M) & (np.abs(f_high) > _FALSI_M)
+    kept = np.zeros(low.shape, dtype=int)  # the end kept last: -1 the low one, +1 the high one
+    for _ in range(_FALSI_ITERATIONS):
+        if not active.any():
+            break
+        with np.errstate(invalid="ignore", divide="ignore"):
+            trial = (low * f_high - high * f_low) / (f_high - f_low)
+        inside = (trial - low) * (trial - high) < 0
+        point = np.where(active, np.where(inside, trial, 0.5 * (low + high)), point)
+        value = function(point)
+        upper = np.sign(value) == np.sign(f_high)  # the point replaces the high end
+        keeps = np.where(upper, -1, 1)
+        halved = np.where(kept == keeps, 0.5, 1.0)
+        low, f_low, high, f_high = (
+            np.where(active, new, old)
+            for new, old in (
+                (np.where(upper, low, point), low),
+                (np.where(upper, halved * f_low, value), f_low),
+                (np.where(upper, point, high), high),
+                (np.where(upper, value, halved * f_high), f_high),
+            )
+        )
+        kept = np.where(active, keeps, kept)
+        active &= (np.abs(value) > _FALSI_M) & (np.abs(high - low) > _FALSI_WIDTH)
+    return point
+
+
 class LearnedSolution:
     """A learned engine's flight of one launch or many (:class:`~harp_analysis.models.launch.
     Launches`): numbers for a single Launch, arrays (n,) for many; positions in the 3DOF's
@@ -276,6 +321,66 @@ class LearnedSolution:
     def apogee_time_s(self):
         """Time of the apogee (s)."""
         return self._out(self._apogees[1] * self._time_of_flight)
+
+    def crossing(self, altitude_m, rising=False) -> tuple:
+        """Where each flight's path crosses ``altitude_m`` (m; one for every launch or (n,))
+        on its way up where ``rising`` (a bool, or (n,)), else on its way down: the time (s)
+        and the point fixed to the Earth ((3,) or (n, 3), in the Earth's axes at launch, as
+        :attr:`impact_point_m`). Illinois' method (regula falsi, an end kept twice in a row
+        halved) on the radius, bracketed by launch and apogee or apogee and impact, to a tenth
+        of a millimetre. NaN where the path at the apogee's time stays below the altitude
+        (where the apogee is learned apart from the path, as the calibrated MKS's is, the
+        path's top lies within metres of :attr:`apogee_altitude_m`). On the way down to the
+        ground (altitude 0), or to an altitude below the impact's, it is the impact
+        (:attr:`impact_point_m` at :attr:`time_of_flight_s`): the flight ends there, its
+        altitude within metres of 0 (what the interpolation leaves).
+
+        Parameters
+        ----------
+        altitude_m : float or numpy.ndarray
+            The altitude crossed (m above the spherical Earth), >= 0.
+        rising : bool or numpy.ndarray
+            Crossed on the way up (before the apogee), not the way down.
+
+        Returns
+        -------
+        time_s : float or numpy.ndarray
+            When it crosses (s after launch).
+        point_m : numpy.ndarray
+            Where, fixed to the Earth (m), (3,) or (n, 3).
+        """
+        count = self._time_of_flight.size
+        altitude = np.broadcast_to(finite_array(altitude_m, "altitude_m"), (count,))
+        if np.any(altitude < 0):
+            raise ValueError("altitude_m must be >= 0 (m above the spherical Earth)")
+        up = np.asarray(rising)
+        if up.dtype != bool:
+            raise TypeError(f"rising must be True, False or an array of them; got {rising!r:.80}")
+        up = np.broadcast_to(up, (count,))
+        top = self._apogees[1]
+
+        def excess(fraction: np.ndarray) -> np.ndarray:
+            radius = np.linalg.norm(self._at_fractions(fraction[:, None])[:, 0], axis=-1)
+            return radius - earth.RADIUS_M - altitude
+
+        end = np.where(up, 0.0, 1.0)  # launch, or impact
+        f_top, f_end = excess(top), excess(end)
+        reached = f_top >= 0
+        fraction = _falsi(
+            excess,
+            np.where(up, end, top),
+            np.where(up, f_end, f_top),
+            np.where(up, top, end),
+            np.where(up, f_top, f_end),
+            reached & (up | ((f_end < 0) & (altitude > 0))),  # else launch or impact
+        )
+        fraction[~reached] = np.nan
+        found = np.isfinite(fraction)
+        fraction = np.where(found, fraction, 1.0)
+        time = fraction * self._time_of_flight
+        point = self._turned(self._at_fractions(fraction[:, None]), time[:, None])[:, 0]
+        time[~found], point[~found] = np.nan, np.nan
+        return self._out(time), point[0] if self.single else point
 
     def positions(self, time_s) -> np.ndarray:
         """Inertial positions (k, 3) of a single launch at ``time_s`` (k,) within the flight, in

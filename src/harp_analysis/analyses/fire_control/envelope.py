@@ -36,7 +36,16 @@ from ...models.launch import Launch, Launches
 from ...models.trajectory import EndAltitudeNotCrossedWarning
 from .firing import destination, firing_solutions
 
-__all__ = ["ROOTS", "OUTCOMES", "MEASURED", "NO_SOLUTION", "NEVER_THERE", "MAP_COLUMNS", "miss_map"]
+__all__ = [
+    "ROOTS",
+    "OUTCOMES",
+    "MEASURED",
+    "NO_SOLUTION",
+    "NEVER_THERE",
+    "MAP_COLUMNS",
+    "miss_map",
+    "three_dof_misses",
+]
 
 ROOTS = ("low", "high")
 #: What a map point's row holds (column ``outcome``): the 3DOF fired at the MKS solution
@@ -68,9 +77,7 @@ MAP_COLUMNS = (
 )
 
 
-def _three_dof_misses(
-    gun: Launch, targets, solutions, rtol: float
-) -> tuple[np.ndarray, np.ndarray]:
+def three_dof_misses(gun: Launch, targets, solutions, rtol: float) -> tuple[np.ndarray, np.ndarray]:
     """The 3DOF (the gun's atmosphere, drag law and Earth rotation) fired once at each firing
     solution, flown as one batch: the distance (m) from where it crosses its target's altitude
     on the solution's branch to the target, NaN if it never gets there (within the 3DOF's
@@ -139,7 +146,7 @@ def _points(
             flown.append((row, target, solution))
     if flown:
         chosen, aims, solved = zip(*flown, strict=True)
-        misses, apogees = _three_dof_misses(gun, aims, solved, rtol)
+        misses, apogees = three_dof_misses(gun, aims, solved, rtol)
         for row, aim, miss, apogee in zip(chosen, aims, misses, apogees, strict=True):
             row.update(miss_3dof_m=miss, apogee_3dof_m=apogee, outcome=MEASURED)
             if not math.isfinite(miss):

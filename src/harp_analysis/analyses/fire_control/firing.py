@@ -10,6 +10,11 @@ target. One vectorised MKS over a grid of elevations at the great-circle bearing
 low-angle and high-angle roots (the range at the target's altitude against elevation), and
 scipy's least squares refines (elevation, bearing) from each bracket.
 
+With ``model="calibrated"`` each root the ECI MKS finds is then moved onto the calibrated
+MKS's (:mod:`.calibrated`: the ECI MKS corrected by a table learned from the gun's 3DOF
+flights, :mod:`harp_analysis.engines.calibrated_mks`), which lands tens of metres from where the
+3DOF does instead of kilometres; the text's ECI MKS stays the default.
+
 The rest of Chapter 7 A lives beside it: :mod:`.verification` flies the 3DOF at a solution and
 refines it by shooting, :mod:`.intercepts` meets ballistic targets and raids, and
 :mod:`.costs` counts and times both against the text's claims.
@@ -33,7 +38,7 @@ from ...models.launch import Launch
 from ...models.projectiles import HP
 from ...models.sites import BARBADOS
 from ...models.trajectory import launch_frame
-from . import solver
+from . import calibrated, solver
 
 __all__ = [
     "TargetPoint",
@@ -44,6 +49,7 @@ __all__ = [
     "east_north",
     "east_north_axes",
     "BRANCHES",
+    "MODELS",
     "AT_GUN_M",
     "destination",
     "BARBADOS_HP",
@@ -51,6 +57,9 @@ __all__ = [
 ]
 
 BRANCHES = ("descending", "ascending")
+#: The models a firing solution can come from: the text's ECI MKS (:mod:`.solver`), or the
+#: calibrated MKS (:mod:`.calibrated`), from the ECI MKS's roots.
+MODELS = ("eci", "calibrated")
 #: A target closer to the gun than this along the ground (m) is at the gun, or straight above
 #: it: far closer than any shot is aimed (the 3DOF refinement lands within a centimetre), and
 #: where the great-circle bearing from the gun, along which the solver searches, is lost.
@@ -161,6 +170,11 @@ class FiringSolution:
     #: d(east, north miss)/d(elevation, bearing) (m/rad) of the MKS at the root, (2, 2)
     #: read-only: the 3DOF refinement's first Jacobian
     jacobian_m_rad: np.ndarray | None = field(default=None, compare=False, repr=False)
+    #: the model whose root it is, of :data:`MODELS`: "eci" (the text's ECI MKS) or
+    #: "calibrated" (the calibrated MKS); time of flight, miss, beta and apogee are its
+    model: str = "eci"
+    #: where the calibrated MKS was asked for and this is the ECI MKS's root, why
+    reason: str | None = None
 
     @property
     def beta_valid(self) -> bool:
@@ -178,7 +192,7 @@ class FiringSolutions:
     low: FiringSolution | None
     high: FiringSolution | None
     reason: str | None
-    mks_solves: int
+    mks_solves: int  # the calibrated MKS's flights included, where it was asked for
     #: the greatest Earth-fixed ground range (m) toward the target, at its altitude, that the
     #: search found (the maximum range where it had to search for it)
     maximum_range_m: float
@@ -294,8 +308,10 @@ def great_circle(gun: Launch, target: TargetPoint) -> tuple[float, float]:
 def east_north(difference, at, axes=None) -> np.ndarray:
     """The east and north components (..., 2) of ``difference`` (..., 3) at the points ``at``
     (..., 3), whose :func:`east_north_axes` are ``axes`` if given."""
+    # products summed as they always were: the flights scipy's shooting from the drag-free
+    # conic counts (costs.shoot_3dof, a ledger row) move with the last bit of the miss
     axes = east_north_axes(at) if axes is None else axes
-    return np.sum(np.asarray(difference)[..., None, :] * axes, axis=-1)
+    return np.stack([np.sum(difference * axes[..., k, :], -1) for k in range(2)], axis=-1)
 
 
 def east_north_axes(at) -> np.ndarray:
@@ -366,10 +382,12 @@ def _solutions(
     targets: list[TargetPoint],
     branch: str,
     limits: tuple[float, float] | None,
-    model: eci.EciModel = eci.CONSISTENT,
+    model: str = "eci",
+    eci_model: eci.EciModel = eci.CONSISTENT,
 ) -> list[FiringSolutions]:
-    """Every target's FiringSolutions, solved in one call of the compiled solver."""
-    laid = _Gun(gun, model)
+    """Every target's FiringSolutions, solved in one call of the compiled solver, and for the
+    calibrated ``model`` every root found moved onto the calibrated MKS's at once."""
+    laid = _Gun(gun, eci_model)
     count = len(targets)
     latitude = np.radians([target.latitude_deg for target in targets])
     longitude = np.radians([target.longitude_deg - gun.longitude_deg for target in targets])
@@ -378,13 +396,18 @@ def _solutions(
     roots, status, search, counts = solver.solve(
         laid.numbers, laid.flags, latitude, longitude, altitude, descending
     )
+    degenerate = [_degenerate(target, search[i, 6], branch) for i, target in enumerate(targets)]
+    usable = np.array([why is None for why in degenerate], dtype=bool)
+    solved = (status == solver.FOUND) & usable[:, None]
+    models = np.full(status.shape, "eci", dtype=object)
+    notes = np.full(status.shape, None, dtype=object)
+    if model == "calibrated" and solved.any():
+        roots, counts = roots.copy(), counts.copy()
+        _calibrate(gun, targets, branch, roots, solved, counts, models, notes)
     results = []
     for i, target in enumerate(targets):
-        degenerate = _at_gun(target, search[i, 6])
-        if degenerate is None and branch == "ascending" and target.altitude_m == 0.0:
-            degenerate = "the ascending branch meets altitude 0 only at the muzzle"
-        if degenerate is not None:
-            results.append(FiringSolutions(None, None, degenerate, int(counts[i]), math.nan))
+        if degenerate[i] is not None:
+            results.append(FiringSolutions(None, None, degenerate[i], int(counts[i]), math.nan))
             continue
         both = int(status[i, 0]) if status[i, 0] == status[i, 1] else -1
         reason = {
@@ -415,7 +438,7 @@ def _solutions(
                 found.append(None)
                 reasons.append(_missing(status[i, side], side, search[i], row))
                 continue
-            root, why = _root(row, target, branch, limits)
+            root, why = _root(row, target, branch, limits, models[i, side], notes[i, side])
             found.append(root)
             if why is not None:
                 reasons.append(f"no {('low', 'high')[side]}-angle root: {why}")
@@ -427,11 +450,53 @@ def _solutions(
     return results
 
 
+def _degenerate(target: TargetPoint, distance_m: float, branch: str) -> str | None:
+    """Why ``target``, ``distance_m`` from the gun along the ground, has no firing solution on
+    ``branch`` whatever the model (at the gun, or on the ground on the way up); else None."""
+    muzzle = branch == "ascending" and target.altitude_m == 0.0
+    return _at_gun(target, distance_m) or (
+        "the ascending branch meets altitude 0 only at the muzzle" if muzzle else None
+    )
+
+
+def _calibrate(gun, targets, branch, roots, solved, counts, models, notes) -> None:
+    """The solver's ``roots`` (n, 2, fields) where ``solved`` moved onto the calibrated MKS's
+    (:func:`.calibrated.refine`, all at once), in place: elevation, bearing, time of flight,
+    miss, beta, apogee and Jacobian its own, its flights added to the evaluations and to
+    ``counts`` (n,); ``models`` and ``notes`` (n, 2) say whose root each is, and why the ECI
+    MKS's is kept where it is."""
+    target, side = np.nonzero(solved)
+    aims = np.array([targets[i].earth_fixed_m() for i in target])
+    rows = roots[target, side]
+    refined = calibrated.refine(
+        gun,
+        aims,
+        east_north_axes(aims),
+        np.array([targets[i].altitude_m for i in target], dtype=float),
+        np.full(target.size, branch == "ascending"),
+        rows[:, :2],
+        rows[:, 7:11].reshape(-1, 2, 2),
+    )
+    moved = np.array([why is None for why in refined.reasons])
+    rows[moved, :2] = refined.x[moved]
+    rows[moved, 2] = refined.time_of_flight_s[moved]
+    rows[moved, 3] = refined.miss_m[moved]
+    rows[moved, 4] = refined.beta[moved]
+    rows[moved, 5] = refined.apogee_altitude_m[moved]
+    rows[moved, 7:11] = refined.jacobian_m_rad[moved].reshape(-1, 4)
+    rows[:, 6] += refined.evaluations
+    roots[target, side] = rows
+    np.add.at(counts, target, refined.evaluations)
+    models[target[moved], side[moved]] = "calibrated"
+    notes[target, side] = refined.reasons
+
+
 def _root(
-    row, target: TargetPoint, branch: str, limits
+    row, target: TargetPoint, branch: str, limits, model: str = "eci", note: str | None = None
 ) -> tuple[FiringSolution | None, str | None]:
-    """The FiringSolution of a solver's root ``row`` (:data:`.solver.SOLUTION_FIELDS`),
-    or None and why where the bearing limits or the arrival time rule it out."""
+    """The FiringSolution of a solver's root ``row`` (:data:`.solver.SOLUTION_FIELDS`) by
+    ``model`` (``note``: why the ECI MKS's root stands for the calibrated MKS's), or None and
+    why where the bearing limits or the arrival time rule it out."""
     elevation, bearing, time, miss, beta, apogee, evaluations = row[:7]
     bearing_deg = math.degrees(bearing) % 360.0
     if limits is not None and not _within(bearing_deg, limits):
@@ -456,6 +521,8 @@ def _root(
         mks_solves=int(evaluations),
         branch=branch,
         jacobian_m_rad=jacobian,
+        model=model,
+        reason=note,
     ), None
 
 
@@ -466,6 +533,7 @@ def firing_solutions(
     *,
     bearing_limits_deg: tuple[float, float] | None = None,
     branch: str = "descending",
+    model: str = "eci",
 ) -> FiringSolutions: ...
 @overload
 def firing_solutions(
@@ -474,8 +542,9 @@ def firing_solutions(
     *,
     bearing_limits_deg: tuple[float, float] | None = None,
     branch: str = "descending",
+    model: str = "eci",
 ) -> list[FiringSolutions]: ...
-def firing_solutions(gun, targets, *, bearing_limits_deg=None, branch="descending"):
+def firing_solutions(gun, targets, *, bearing_limits_deg=None, branch="descending", model="eci"):
     """The low-angle and high-angle firing solutions of ``gun`` (a Launch: its projectile,
     speed, site and Earth rotation; its elevation and bearing are ignored) onto ``targets``
     (one TargetPoint, or a sequence of them: one result each, solved together by the compiled
@@ -483,7 +552,9 @@ def firing_solutions(gun, targets, *, bearing_limits_deg=None, branch="descendin
     trajectory's ``branch`` ("descending" or "ascending"). The bearing is limited to the arc
     turning clockwise from bearing_limits_deg[0] to [1] if given. A target out of reach, or at
     the gun (closer than :data:`AT_GUN_M` along the ground), is a result with no roots and the
-    reason, not an exception.
+    reason, not an exception. ``model="calibrated"`` moves every root onto the calibrated MKS's
+    (:mod:`.calibrated`; its table learned for the gun on first use, a few seconds), keeping
+    the ECI MKS's root, with the reason, where it has none (:attr:`FiringSolution.reason`).
 
     Parameters
     ----------
@@ -497,6 +568,10 @@ def firing_solutions(gun, targets, *, bearing_limits_deg=None, branch="descendin
         the gun may take.
     branch : str
         ``"descending"`` or ``"ascending"``: where the trajectory meets the target.
+    model : str
+        ``"eci"`` (the text's ECI MKS) or ``"calibrated"`` (the calibrated MKS, from the ECI
+        MKS's roots; a gun outside the band it learns, its muzzle speed 0.8-1.15 of the
+        projectile's and its day's density within 10 %, is refused by name).
 
     Returns
     -------
@@ -508,7 +583,10 @@ def firing_solutions(gun, targets, *, bearing_limits_deg=None, branch="descendin
     points, single = check_targets(targets)
     branch = check_choice(branch, "branch", BRANCHES)
     limits = check_bearing_limits(bearing_limits_deg)
-    results = _solutions(gun, points, branch, limits)
+    model = check_choice(model, "model", MODELS)
+    if model == "calibrated":
+        calibrated.calibration(gun)  # the gun refused by name outside the band
+    results = _solutions(gun, points, branch, limits, model)
     return results[0] if single else results
 
 

@@ -30,6 +30,7 @@ from ...models.trajectory import launch_frame, rotate_about_axis
 from .firing import (
     BARBADOS_HP,
     BRANCHES,
+    MODELS,
     FiringSolution,
     TargetPoint,
     check_bearing_limits,
@@ -197,13 +198,14 @@ def _check_intercept_times(times_s, target: KeplerTarget) -> np.ndarray:
     return times
 
 
-def _intercepts(gun, targets, times, branch, limits) -> list[list[Intercept]]:
+def _intercepts(gun, targets, times, branch, limits, model) -> list[list[Intercept]]:
     """The intercepts of every target at its times (a list of (n_i,) arrays), all solved in
-    one call of the compiled solver."""
+    one call of the compiled solver (and, for the calibrated ``model``, moved onto its roots
+    at once)."""
     aims = [_aims(gun, target, own) for target, own in zip(targets, times, strict=True)]
     reachable = [aim for row in aims for aim in row if aim is not None]
     solved = iter(
-        firing_solutions(gun, reachable, bearing_limits_deg=limits, branch=branch)
+        firing_solutions(gun, reachable, bearing_limits_deg=limits, branch=branch, model=model)
         if reachable
         else []
     )
@@ -230,20 +232,23 @@ def intercept(
     *,
     branch: str = "ascending",
     bearing_limits_deg: tuple[float, float] | None = None,
+    model: str = "eci",
 ) -> Intercept:
     """The firing solutions (fire time, elevation, bearing, time of flight by eq 3.32) whose
     MKS projectile meets ``target`` at ``intercept_time_s`` on the trajectory's ``branch``:
     :func:`.firing.firing_solutions` to the target's point then, turned back to the Earth-fixed
-    frame, with that time as the arrival time. A solution that would have to be fired before
-    t = 0, or a target already landed, is no solution, with the reason."""
+    frame, with that time as the arrival time, by ``model`` (:data:`.firing.MODELS`). A
+    solution that would have to be fired before t = 0, or a target already landed, is no
+    solution, with the reason."""
     gun = check_gun(gun)
     target = _check_kepler_target(target)
     branch = check_choice(branch, "branch", BRANCHES)
     limits = check_bearing_limits(bearing_limits_deg)
+    model = check_choice(model, "model", MODELS)
     time = _check_intercept_times(intercept_time_s, target)
     if np.ndim(intercept_time_s) != 0:
         raise TypeError("intercept_time_s must be one time (s); intercept_window takes many")
-    return _intercepts(gun, [target], [time], branch, limits)[0][0]
+    return _intercepts(gun, [target], [time], branch, limits, model)[0][0]
 
 
 @dataclass(frozen=True)
@@ -315,11 +320,12 @@ def intercept_window(
     count: int = 50,
     branch: str = "ascending",
     bearing_limits_deg: tuple[float, float] | None = None,
+    model: str = "eci",
 ) -> InterceptWindow:
     """:func:`intercept` at every time of ``times_s`` (s), or by default at ``count`` times
     spread over the target's flight from its epoch (or t = 0, if later) until it falls back to
-    the ground (ends excluded), solved together: which are feasible, the earliest and latest
-    feasible intercept and the feasible fire times."""
+    the ground (ends excluded), solved together by ``model``: which are feasible, the earliest
+    and latest feasible intercept and the feasible fire times."""
     return raid_windows(
         gun,
         [target],
@@ -327,6 +333,7 @@ def intercept_window(
         count=count,
         branch=branch,
         bearing_limits_deg=bearing_limits_deg,
+        model=model,
     )[0]
 
 
@@ -338,6 +345,7 @@ def raid_windows(
     count: int = 50,
     branch: str = "ascending",
     bearing_limits_deg: tuple[float, float] | None = None,
+    model: str = "eci",
     client=None,
 ) -> list[InterceptWindow]:
     """:func:`intercept_window` of every target of a raid, every intercept of every target
@@ -361,6 +369,9 @@ def raid_windows(
     bearing_limits_deg : (float, float), optional
         The arc of bearings the gun may take (deg from true north, clockwise from the first to
         the second); None for any.
+    model : str
+        ``"eci"`` (the text's ECI MKS) or ``"calibrated"`` (the calibrated MKS, from the ECI
+        MKS's roots; :func:`.firing.firing_solutions`).
     client : dask.distributed.Client, optional
         Shares the targets out among its workers; None solves them in this process.
 
@@ -379,20 +390,21 @@ def raid_windows(
     targets = list(targets)
     branch = check_choice(branch, "branch", BRANCHES)
     limits = check_bearing_limits(bearing_limits_deg)
+    model = check_choice(model, "model", MODELS)
     if times_s is None:
         count = int(check_range(real_number(count, "count"), "count", low=1))
     times = [_window_times(target, times_s, count) for target in targets]
     if client is not None:
-        solve = partial(_raid_chunk, gun=gun, branch=branch, limits=limits)
+        solve = partial(_raid_chunk, gun=gun, branch=branch, limits=limits, model=model)
         chunks = sweep(solve, client_shares(list(zip(targets, times)), client), client=client)
         return [window for chunk in chunks for window in chunk]
-    return [_window(items) for items in _intercepts(gun, targets, times, branch, limits)]
+    return [_window(items) for items in _intercepts(gun, targets, times, branch, limits, model)]
 
 
-def _raid_chunk(chunk, gun, branch, limits) -> list[InterceptWindow]:
+def _raid_chunk(chunk, gun, branch, limits, model) -> list[InterceptWindow]:
     """The windows of a chunk of (target, times) pairs (a Dask worker's share of a raid)."""
     targets, times = zip(*chunk, strict=True)
-    return [_window(items) for items in _intercepts(gun, targets, times, branch, limits)]
+    return [_window(items) for items in _intercepts(gun, targets, times, branch, limits, model)]
 
 
 def raid_roots(windows: Sequence[InterceptWindow]) -> list[tuple[Intercept, FiringSolution]]:

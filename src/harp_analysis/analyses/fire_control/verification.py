@@ -105,7 +105,7 @@ class _Shot(NamedTuple):
 
     elevation_rad: float
     bearing_rad: float
-    miss_m: np.ndarray
+    miss_m: tuple[float, float]
     time_s: float
     range_m: float
     aim_range_m: float
@@ -185,10 +185,11 @@ class _Batch3dof:
         aim = surface_range(tuple(self.aims[i]), up, downrange)
         crossing = flight.range_m[0], flight.cross_range_m[0]
         turn = _azimuth(*aim) - _azimuth(*crossing)
+        east, north = self.miss_of(flight, which)[0]
         return _Shot(
             elevation,
             bearing,
-            self.miss_of(flight, which)[0],
+            (float(east), float(north)),
             float(flight.time_of_flight_s[0]) if reached else math.nan,
             _from_gun(*crossing) if reached else math.nan,
             _from_gun(*aim),

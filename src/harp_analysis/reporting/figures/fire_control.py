@@ -1,4 +1,5 @@
-"""The fire-control figures (X.1, X.2): reporting on :mod:`.envelope`'s miss maps."""
+"""The fire-control figures (X.1, X.2): reporting on :mod:`.envelope`'s miss maps; and the
+calibrated MKS's roots against the ECI MKS's (:mod:`.model_comparison`), drawn in notebook 07."""
 
 from __future__ import annotations
 
@@ -10,9 +11,9 @@ from matplotlib.lines import Line2D
 
 from ...analyses.fire_control import envelope
 from ...engines import mks
-from ..plotting import FULL_WIDTH_IN, OKABE_ITO, new_figure
+from ..plotting import FULL_WIDTH_IN, OKABE_ITO, new_figure, style
 
-__all__ = ["MISS_CLASSES", "draw_miss_map"]
+__all__ = ["MISS_CLASSES", "draw_miss_map", "draw_model_comparison"]
 
 #: Miss classes (low, high in m, label, marker, shade): a marker and a shade of grey each
 #: (darker, larger miss), so they read without colour; a decade each, metres to 100 km.
@@ -155,4 +156,51 @@ def draw_miss_map(maps: pd.DataFrame, bearings_deg, root: str, site: str):
     ]
     fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=7.5)
     fig.suptitle(f"{root}-angle ECI MKS solution flown by the 3DOF:\n{site}", fontsize=9)
+    return fig
+
+
+#: The models of :func:`draw_model_comparison`: (model asked, whose roots, label, engine style).
+_MODELS = (
+    ("eci", "eci", "ECI MKS (the text's)", "ECI MKS"),
+    ("calibrated", "calibrated", "calibrated MKS", "calibrated MKS"),
+)
+#: Flights a root above this are drawn together in its last bar.
+_MOST_FLIGHTS = 10
+
+
+def draw_model_comparison(misses: pd.DataFrame, raids: dict[str, pd.DataFrame]):
+    """Left: the share of roots (cumulative) whose 3DOF flight misses the aim by less than a
+    distance, for the ECI MKS's roots and the calibrated MKS's own (``misses``:
+    :func:`.model_comparison.compare_models`; roots whose flight never gets there left out).
+    Right: the 3DOF flights the verified raid takes to land each root, for each model's roots
+    it lands (``raids``: :func:`.model_comparison.verified_raid` by model)."""
+    fig, (left, right) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 2.8), layout="constrained")
+    for model, whose, label, engine in _MODELS:
+        rows = misses[(misses.model == model) & (misses.solved_by == whose)]
+        miss = np.sort(rows.miss_3dof_m.dropna().to_numpy(dtype=float))
+        share = np.arange(1, miss.size + 1) / miss.size
+        left.step(miss, share, where="post", label=f"{label}, {miss.size} roots", **style(engine))
+    left.set(xscale="log", xlabel="3DOF miss at the root (m)", ylabel="share of roots")
+    left.set_ylim(0.0, 1.0)
+    left.legend(loc="lower right", fontsize=7)
+    bins = np.arange(1, _MOST_FLIGHTS + 1)
+    width = 0.4
+    for k, (model, whose, label, engine) in enumerate(_MODELS):
+        frame = raids[model]
+        landed = frame[frame.converged & (frame.solved_by == whose)]
+        flights = np.minimum(landed.flights.to_numpy(), _MOST_FLIGHTS)
+        counts = np.array([(flights == n).sum() for n in bins]) / max(len(landed), 1)
+        right.bar(
+            bins + (k - 0.5) * width,
+            counts,
+            width=width,
+            color=style(engine)["color"],
+            hatch="///" if k else None,
+            edgecolor=OKABE_ITO["black"],
+            linewidth=0.5,
+            label=f"{label}: {landed.flights.mean():.2f} a root",
+        )
+    right.set_xticks(bins, [*map(str, bins[:-1]), f"{_MOST_FLIGHTS}+"])
+    right.set(xlabel="3DOF flights to land within the tolerance", ylabel="share of roots landed")
+    right.legend(loc="upper right", fontsize=7)
     return fig
