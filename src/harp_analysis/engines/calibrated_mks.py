@@ -29,8 +29,8 @@ what it misses jumps in slope where a launch Mach crosses one (HP's table at Mac
 correction learned across such a kink interpolates poorly, one learned on a smooth base does not.
 The 3DOF's flights fly the drag table as it is; the table learns the rest.
 
-A launch outside the band, or of another gun, is refused by name (:meth:`.flight_grid.Band.
-check`): a table is never extrapolated. A calibration is computed once per gun and version of
+A launch outside the band, or of another gun, is refused by name (:meth:`.flight_grid.Band.check`):
+a table is never extrapolated. A calibration is computed once per gun and version of
 the physics, kept in memory and on disk (:mod:`harp_analysis.foundation.stored`), read-only
 (:func:`calibration_for`); its cost is reported (:attr:`Calibration.seconds`).
 
@@ -101,18 +101,18 @@ class Calibration(LearnedTable):
 
     @property
     def time_factor(self) -> np.ndarray:
-        """kappa = T_3DOF / T_MKS at each node (*grid,)."""
+        """kappa = T_3DOF / T_MKS at each node, ``(*grid,)``."""
         return split(self.values, _NUMBERS)[0][..., 0]
 
     @property
     def apogee_m(self) -> np.ndarray:
         """The 3DOF's apogee altitude less the MKS's (m), and its fraction of the flight less
-        the MKS's, at each node (*grid, 2)."""
+        the MKS's, at each node, ``(*grid, 2)``."""
         return split(self.values, _NUMBERS)[0][..., 1:]
 
     @property
     def displacement_m(self) -> np.ndarray:
-        """The 3DOF's displacement from the MKS at each node (*grid, nodes, 3)."""
+        """The 3DOF's displacement from the MKS at each node, ``(*grid, nodes, 3)``."""
         return split(self.values, _NUMBERS)[1]
 
 

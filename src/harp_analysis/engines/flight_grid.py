@@ -7,9 +7,9 @@ flights, and name two ways: correction tables learned from 3DOF flights (the cal
 flights of one gun, here:
 
 - :class:`Gun`: what a table is learned for, a projectile at a site (latitude, site altitude,
-  the air's model and temperature, the Earth's rotation); a :class:`~harp_analysis.models.
-  launch.Launch` names its gun (:meth:`Gun.of`), and the longitude does not matter (the Earth
-  is the same at every longitude).
+  the air's model and temperature, the Earth's rotation); a
+  :class:`~harp_analysis.models.launch.Launch` names its gun (:meth:`Gun.of`), and the
+  longitude does not matter (the Earth is the same at every longitude).
 - :class:`Band`: the launches a table covers, muzzle speeds 0.8-1.15 times the projectile's,
   elevations 15-88 deg, any bearing, days within +-10 % of the air's density;
   :meth:`Band.check` refuses a launch outside it, naming the field and the band (a table is
@@ -339,8 +339,8 @@ def interpolate(
     points: np.ndarray,
     speed_breaks: np.ndarray | None = None,
 ) -> np.ndarray:
-    """``values`` (*grid, *shape), given at the nodes of ``axes`` (elevation, speed factor,
-    bearing, density change), at ``points`` (n, 4): (n, *shape), by local tensor-product
+    """``values`` ``(*grid, *shape)``, given at the nodes of ``axes`` (elevation, speed factor,
+    bearing, density change), at ``points`` ``(n, 4)``: ``(n, *shape)``, by local tensor-product
     Lagrange interpolation (cubic in each axis of four or more nodes, periodic in bearing, no
     stencil across one of ``speed_breaks``). The stencils are found in numpy, the sum over
     them (a few hundred nodes of a hundred values each) runs compiled."""

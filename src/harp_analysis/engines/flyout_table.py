@@ -18,8 +18,8 @@ themselves:
   twelve bearings misses its sine by about 0.2 %, some 130 m at the impact of a 45 deg shot
   of HP (5 m fixed to the Earth, where only the Coriolis and centrifugal pushes vary with
   the bearing);
-- between the grid's nodes, local cubic interpolation in each input (:func:`.flight_grid.
-  interpolate`, periodic in bearing), as the calibrated MKS interpolates its own table;
+- between the grid's nodes, local cubic interpolation in each input, periodic in bearing
+  (:func:`.flight_grid.interpolate`), as the calibrated MKS interpolates its own table;
 - between the time nodes, the not-a-knot cubic spline through the 34 positions, in the fraction
   of the flight: the path is curved, and a straight line between nodes 9 s apart cuts an
   apogee of HP by 50-300 m; the spline keeps to the 3DOF's path within 7 m anywhere (the last
@@ -141,10 +141,11 @@ def table_for(launch: Launch | Launches, grid: Grid = DEFAULT_GRID) -> FlyoutTab
 
 
 class FlyoutSolution(LearnedSolution):
-    """The fly-out table's flight of one launch or many (:class:`~harp_analysis.models.launch.
-    Launches`): the time of flight and the positions at the time nodes interpolated at each
-    launch, the spline in time between them (:class:`.learned.LearnedSolution`: numbers for a
-    single Launch, arrays (n,) for many; positions in the 3DOF's frame)."""
+    """The fly-out table's flight of one launch or many
+    (:class:`~harp_analysis.models.launch.Launches`): the time of flight and the positions at
+    the time nodes interpolated at each launch, the spline in time between them
+    (:class:`.learned.LearnedSolution`: numbers for a single Launch, arrays (n,) for many;
+    positions in the 3DOF's frame)."""
 
     ENGINE = ENGINE
 

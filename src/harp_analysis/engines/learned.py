@@ -56,7 +56,7 @@ __all__ = [
 
 @dataclass(frozen=True, kw_only=True)
 class LearnedTable:
-    """What an engine learned of one gun's 3DOF flights over a grid: ``values`` (*grid, m), a
+    """What an engine learned of one gun's 3DOF flights over a grid: ``values`` ``(*grid, m)``, a
     row at each node of the grid's axes (elevation, speed factor, bearing, density change),
     read-only; the flights it was learned from, their right-hand-side evaluations and the
     seconds learning took (measured; 0 where it was loaded from disk). Engines add their own
@@ -227,9 +227,10 @@ def _falsi(function, low, f_low, high, f_high, active) -> np.ndarray:
 
 
 class LearnedSolution:
-    """A learned engine's flight of one launch or many (:class:`~harp_analysis.models.launch.
-    Launches`): numbers for a single Launch, arrays (n,) for many; positions in the 3DOF's
-    frame (inertial, the axes the Earth has at launch, the launch's longitude included).
+    """A learned engine's flight of one launch or many
+    (:class:`~harp_analysis.models.launch.Launches`): numbers for a single Launch, arrays (n,)
+    for many; positions in the 3DOF's frame (inertial, the axes the Earth has at launch, the
+    launch's longitude included).
 
     An engine's solution sets :attr:`ENGINE` (its label), ``_time_of_flight`` (n,) and gives
     :meth:`_at_fractions` and :meth:`_velocities` (inertial, at longitude 0) and
