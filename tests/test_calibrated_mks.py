@@ -8,6 +8,7 @@ import warnings
 
 import numpy as np
 import pytest
+from scipy.optimize import minimize_scalar
 
 from harp_analysis.engines import calibrated_mks, eci, flight_grid, threedof
 from harp_analysis.engines.flight_grid import Band, Grid, Gun
@@ -98,6 +99,47 @@ def test_at_a_node_it_flies_the_flight_it_learned(coarse):
     table = flight[["x_m", "y_m", "z_m"]].to_numpy()
     expected = np.stack([np.interp(inside, flight.time_s, table[:, k]) for k in range(3)], axis=1)
     assert np.max(np.linalg.norm(found - expected, axis=1)) < 0.02  # 0.05 s rows, linear
+
+
+def test_a_node_the_turning_earth_leaves_vertical_is_learned():
+    """A westward shot whose horizontal speed the Earth's surface speed cancels is vertical in
+    the inertial frame, where the MKS's angular momentum vanishes and its constants cancel. A
+    gun with such a node on its grid (LP at 80 deg, at the latitude that cancels it exactly) is
+    still learned, and at that node flies the 3DOF's flight."""
+    grid = Grid(elevations_deg=(15.0, 30.0, 50.0, 80.0, 88.0), speed_step=0.2)
+    turning = Gun(LP, rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S)
+    speed = LP.launch_speed_m_s * grid.axes(turning)[1][-1]  # a node of the speeds
+
+    def westward(latitude_deg):
+        return Launch(
+            LP,
+            speed,
+            80.0,
+            bearing_deg=270.0,
+            latitude_deg=latitude_deg,
+            rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
+        )
+
+    area = calibrated_mks._base_drag_area(turning)  # the MKS underneath flies the gun's
+
+    def off_vertical(latitude_deg):
+        correction = eci.correction_for_launch(westward(latitude_deg), drag_area_m2=area)
+        elevation = correction.elevation_rad
+        return math.pi / 2 - float(np.ravel(elevation)[0])
+
+    latitude = minimize_scalar(
+        off_vertical, bounds=(0.0, 60.0), method="bounded", options={"xatol": 1e-9}
+    ).x
+    assert math.degrees(off_vertical(latitude)) < 1e-4  # where the ECI MKS has no closed form
+    gun, launch = dataclasses.replace(turning, latitude_deg=latitude), westward(latitude)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelValidityWarning)
+        learned = calibrated_mks.calibrate(gun, grid)
+        solution = calibrated_mks.solution_for_launch(launch, learned)
+    flight = threedof.simulate_3dof(launch)
+    assert np.ravel(solution.apogee_altitude_m)[0] == pytest.approx(
+        flight.attrs["apogee_altitude_m"], abs=1e-6
+    )
 
 
 def test_between_the_nodes_it_is_far_closer_to_the_3dof_than_the_eci_mks():

@@ -258,6 +258,13 @@ def test_grazing_elevation_fails_at_the_call_naming_the_elevation():
                 mks.simulate_mks(baseline_chapter_4(0.001), warn=warn)
 
 
+def test_a_vertical_launch_fails_at_the_call_naming_its_cause():
+    """At 89.9999 deg h0 = V r0 cos(elevation) (eq 6.13) all but vanishes and the constants
+    cancel: the call names that cause and asks for a lower elevation, not a higher one."""
+    with pytest.raises(ValueError, match="all but vanishes.*lower the elevation"):
+        mks.for_launch(baseline_chapter_4(89.9999), warn=False)
+
+
 @pytest.mark.parametrize("speed_m_s", [300.0, 1000.0])
 def test_a_launch_whose_mks_descends_from_the_muzzle_is_named(speed_m_s):
     """LP at 5 deg and 300 or 1000 m/s: beta ~ 6 puts the first zero of du/dtheta behind the

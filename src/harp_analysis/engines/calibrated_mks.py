@@ -27,7 +27,11 @@ at the projectile's own muzzle speed, for every launch of the band. The launch's
 launch Mach (eqs 3.22, 5.8) follows the drag table's breakpoints, and the MKS with it, so that
 what it misses jumps in slope where a launch Mach crosses one (HP's table at Mach 4.9): a
 correction learned across such a kink interpolates poorly, one learned on a smooth base does not.
-The 3DOF's flights fly the drag table as it is; the table learns the rest.
+The 3DOF's flights fly the drag table as it is; the table learns the rest. And where the Earth's
+turn leaves a steep shot against it all but vertical in the inertial frame, the MKS has no
+closed form (its angular momentum so small that eq 3.30's constants cancel): it is flown there
+at the steepest elevation whose constants hold (:func:`_steepest_elevation`), a few thousandths
+of a degree off, and the table learns that difference too.
 
 A launch outside the band, or of another gun, is refused by name (:meth:`.flight_grid.Band.check`):
 a table is never extrapolated. A calibration is computed once per gun and version of
@@ -41,12 +45,13 @@ from __future__ import annotations
 
 import time
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property, lru_cache
 
 import numpy as np
 import pandas as pd
 
+from ..foundation import earth
 from ..foundation.validation import ModelValidityWarning
 from ..models.launch import Launch, Launches
 from . import eci, mks
@@ -185,9 +190,28 @@ def _hermite(t: np.ndarray, theta: np.ndarray, rate: np.ndarray, at: np.ndarray)
     )
 
 
+#: The largest c3 r0 = G M r0 / h_inf^2 (eq 6.8) the MKS underneath is flown with: its
+#: constants cancel to the last of their digits near 1e10 (measured over betas 0.05-1.5 and
+#: speeds 1-3.6 km/s), so this keeps a hundredfold margin.
+_LARGEST_C3_R0 = 1e8
+
+
+def _steepest_elevation(correction: eci.LaunchCorrection) -> np.ndarray:
+    """Each corrected launch's inertial elevation (rad), but no steeper than the elevation at
+    which h_inf = V r0 cos(elevation) exp(-beta x decay scale) (eqs 6.13, 6.14) gives
+    c3 r0 = :data:`_LARGEST_C3_R0`. The turning Earth makes a steep shot against its turn all
+    but vertical (a westward shot at 75-85 deg, where the Earth's surface speed cancels the
+    muzzle velocity's horizontal part)."""
+    speed = np.asarray(correction.speed_m_s, dtype=float)
+    smallest_cosine = np.sqrt(earth.GM_M3_S2 / (_LARGEST_C3_R0 * earth.RADIUS_M)) / speed
+    smallest_cosine = smallest_cosine * np.exp(correction.beta * correction.decay_scale)
+    return np.minimum(correction.elevation_rad, np.arccos(np.minimum(smallest_cosine, 1.0)))
+
+
 def _base(launch: Launch | Launches, drag_area_m2: float) -> _Base:
     correction = eci.correction_for_launch(launch, drag_area_m2=drag_area_m2)
-    solution = eci.solution_for(correction, n_terms=N_TERMS, warn=False)
+    flown = replace(correction, elevation_rad=_steepest_elevation(correction))
+    solution = eci.solution_for(flown, n_terms=N_TERMS, warn=False)
     if np.any(solution.escapes):
         raise ValueError(
             f"the MKS under the {ENGINE} escapes for this launch: no flight to correct"

@@ -608,13 +608,18 @@ class ModifiedKeplerSolution:
         else:
             failed = solve_constants(*self._arguments, self._table, self.escapes)
         if failed >= 0:
-            raise ValueError(
-                f"the MKS has no usable closed form at elevation_rad = "
-                f"{self.elevation_rad[failed, 0]:.6g} "
-                f"({math.degrees(self.elevation_rad[failed, 0]):.6g} deg): beta = "
-                f"{self.beta[failed, 0]:.4g} (eq 3.22, which grows as 1/sin of the elevation) "
-                "makes h_inf = h0 exp(-beta) underflow or its constants cancel to no "
+            elevation = self.elevation_rad[failed, 0]
+            cause = (
+                "h0 = V r0 cos(elevation) (eq 6.13) all but vanishes, so its constants cancel "
+                "to no significant digit; lower the elevation"
+                if elevation > math.pi / 4
+                else f"beta = {self.beta[failed, 0]:.4g} (eq 3.22, which grows as 1/sin of the "
+                "elevation) makes h_inf = h0 exp(-beta) underflow or its constants cancel to no "
                 "significant digit; raise the elevation"
+            )
+            raise ValueError(
+                f"the MKS has no usable closed form at elevation_rad = {elevation:.6g} "
+                f"({math.degrees(elevation):.6g} deg): {cause}"
             )
         if warn:
             self._warn_outside_validity()
