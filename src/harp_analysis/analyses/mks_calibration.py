@@ -10,7 +10,10 @@ speeds 0.8-1.15 of the projectile's, elevations 15-88 deg, any bearing, the day'
 drawn again (the chance is nil; the check makes the claim true by construction). Each launch
 is flown by the 3DOF (the truth, rtol 1e-9), the calibrated MKS, the ECI MKS (three terms, the
 one door) and the improved MKS (:func:`.mks_improvement.calibration`); the errors are the
-impact point's distance (Earth-fixed), the apogee altitude's and the time of flight's.
+impact point's distance (Earth-fixed), the apogee altitude's and the time of flight's. A
+judgement is computed once per version of the physics (a minute: 360 3DOF flights and each
+model at each launch, one by one), then kept in memory and on disk
+(:func:`harp_analysis.foundation.stored.stored_arrays`, by its guns, count and seed).
 
 SI inside; degrees only in the names that say so.
 """
@@ -28,6 +31,7 @@ from ..engines import calibrated_mks, eci, mks_improved, threedof
 from ..engines.flight_grid import DEFAULT_GRID, Gun
 from ..foundation import earth
 from ..foundation.caching import cached_copies
+from ..foundation.stored import stored_arrays
 from ..foundation.validation import ModelValidityWarning, whole_number
 from ..models.launch import Launch
 from ..models.projectiles import get_projectile
@@ -154,14 +158,26 @@ def judge(
 ) -> pd.DataFrame:
     """Every judged launch (``per_gun`` for each of ``guns``, :func:`judging_guns` by default),
     a row each: the gun, the launch and each model's errors (``<model>_<measure>``), and each
-    gun's calibration cost (``calibration_s``, 0 where it was loaded from disk;
-    ``calibration_flights``)."""
+    gun's calibration cost when it was judged (``calibration_s``, 0 where it was loaded from
+    disk; ``calibration_flights``). Computed once, kept in memory and on disk."""
     count = whole_number(per_gun, "per_gun", low=1, high=10_000)
+    chosen = judging_guns(seed) if guns is None else tuple(guns)
+    key = repr((tuple(gun.key for gun in chosen), count, seed))
+
+    def compute() -> dict[str, np.ndarray]:
+        frame = _judged(chosen, count, seed)
+        return {column: np.asarray(frame[column].tolist()) for column in frame.columns}
+
+    arrays, _ = stored_arrays(__name__, "judged", key, compute)
+    return pd.DataFrame({column: array.copy() for column, array in arrays.items()})
+
+
+def _judged(guns: tuple[Gun, ...], count: int, seed: int) -> pd.DataFrame:
     fitted = mks_improvement.calibration()
     rows = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelValidityWarning)
-        for index, gun in enumerate(judging_guns(seed) if guns is None else guns):
+        for index, gun in enumerate(guns):
             calibration = calibrated_mks.calibration_for(gun.launches(1.0, 45.0, 0.0, 0.0))
             for launch in judging_launches(gun, count, seed + 1 + index):
                 truth = threedof.simulate_3dof(launch, output_step_s=1.0)
