@@ -15,7 +15,9 @@ compile them all again). The folders live in the user's cache folder,
 ``$XDG_CACHE_HOME/harp-analysis/kernels`` (``~/.cache/harp-analysis/kernels`` if
 ``XDG_CACHE_HOME`` is unset); ``HARP_ANALYSIS_KERNEL_CACHE`` names another folder to keep them in
 (``NUMBA_CACHE_DIR``, if set and it is not, puts them in its ``harp-analysis/kernels``).
-A folder no version uses any more is never read again, and may be deleted.
+A folder no version uses any more is never read again, and may be deleted. (An error raised inside
+a kernel that was loaded names, in its traceback, the file of the checkout that compiled it: the
+same source, line for line, elsewhere.)
 
 Each engine with kernels has a ``warm_up()`` that compiles them ahead of use (or loads them);
 ``make`` calls it whenever the sources change, which keeps compilation out of the notebooks'
