@@ -18,7 +18,9 @@ $(STAMP): environment.txt pyproject.toml
 	touch $@
 
 # The engines' compiled kernels (numba), built once per version of the sources and cached on
-# disk (harp_analysis.foundation.compiled), so that no notebook waits for a compiler.
+# disk (harp_analysis.foundation.compiled), so that no notebook waits for a compiler. The cache
+# is the user's (~/.cache/harp-analysis/kernels, or HARP_ANALYSIS_KERNEL_CACHE), found by the
+# sources' contents alone: in a fresh clone of sources compiled before, this loads in seconds.
 $(KERNELS): $(STAMP) $(shell find src/harp_analysis -name '*.py')
 	$(BIN)/python -c "from harp_analysis.engines import flight_grid, mks, mks_improved, mlt, sixdof, threedof; \
 		from harp_analysis.analyses.fire_control import solver as firing_solver; \

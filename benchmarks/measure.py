@@ -49,7 +49,7 @@ def cold_start_s(code: str) -> float:
     """Seconds that ``code`` (which prints them last) takes in a fresh process whose compiled
     kernels start from an empty cache."""
     with tempfile.TemporaryDirectory() as empty:
-        env = dict(os.environ, NUMBA_CACHE_DIR=empty)
+        env = dict(os.environ, HARP_ANALYSIS_KERNEL_CACHE=empty)
         result = subprocess.run(
             [sys.executable, "-c", code], env=env, capture_output=True, text=True, check=False
         )

@@ -25,6 +25,7 @@ PACKAGE = Path(harp_analysis.__file__).parent
 IMMUTABLE_RESULTS = {
     "foundation.compiled._imported_as_of": "a frozenset of paths",
     "foundation.compiled._digest": "a string",
+    "foundation.compiled._toolchain": "a string",
     "reporting.explorer._typical_martlet_mass_kg": "a float",
     "analyses.fire_control.costs.raid_against_3dof_intercept": "a frozen RaidComparison",
     "analyses.fire_control.model_comparison.calibrated_fire_control": (

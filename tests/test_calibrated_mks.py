@@ -302,7 +302,7 @@ def test_the_band_names_its_field_for_a_batch(coarse):
 
 # --- kept once per gun -------------------------------------------------------------------------
 def test_a_calibration_is_learned_once_kept_on_disk_and_read_only(monkeypatch, tmp_path):
-    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("HARP_ANALYSIS_KERNEL_CACHE", str(tmp_path))
     monkeypatch.delenv("HARP_ANALYSIS_STORE", raising=False)
     calibrated_mks._calibration.cache_clear()
     launch = Launch(BASELINE, BASELINE.launch_speed_m_s, 45.0)

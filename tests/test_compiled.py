@@ -133,7 +133,11 @@ def test_processes_compiling_a_kernel_at_once_compile_it_once(tmp_path):
 
     (tmp_path / "kernel_module.py").write_text(KERNEL_MODULE)
     go = tmp_path / "go"
-    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache"), "PYTHONPATH": str(tmp_path)}
+    env = {
+        **os.environ,
+        "HARP_ANALYSIS_KERNEL_CACHE": str(tmp_path / "cache"),
+        "PYTHONPATH": str(tmp_path),
+    }
 
     def start(name: str) -> subprocess.Popen:
         command = [sys.executable, "-c", COMPILE_AT_GO, str(tmp_path / name), str(go)]
@@ -149,6 +153,113 @@ def test_processes_compiling_a_kernel_at_once_compile_it_once(tmp_path):
     assert compiled == [0, 1]
     third = start("ready2")
     assert int(third.communicate(timeout=300)[0]) == 0 and third.returncode == 0
+
+
+# warms one engine up (flight_grid's: its one kernel is the cheapest to compile) and prints the
+# package's file and how many signatures every kernel of the package loaded and compiled
+WARM_UP_AND_COUNT = """
+import json, sys
+from numba.core.dispatcher import Dispatcher
+import harp_analysis
+from harp_analysis.engines import flight_grid
+flight_grid.warm_up()
+kernels = {id(value): value for name, module in list(sys.modules.items())
+           if name.startswith("harp_analysis") for value in vars(module).values()
+           if isinstance(value, Dispatcher)}.values()
+print(json.dumps({"package": harp_analysis.__file__,
+                  "hits": sum(sum(k.stats.cache_hits.values()) for k in kernels),
+                  "misses": sum(sum(k.stats.cache_misses.values()) for k in kernels)}))
+"""
+
+
+def test_a_second_checkout_loads_what_the_first_compiled(tmp_path):
+    """Two copies of the package's sources at different paths, their files written at different
+    times (two clones, a worktree, a CI run): an engine warmed up in the first compiles its
+    kernels into the user's cache, and the second loads them, compiling nothing and adding or
+    rewriting no file there. numba's own cache, kept by each file's location, would compile
+    them again."""
+    import json
+    import os
+    import shutil
+    import subprocess
+    import sys
+    import time
+    from pathlib import Path
+
+    cache = tmp_path / "kernels"
+    now = time.time()
+
+    def checkout(name: str, written: float) -> Path:
+        root = tmp_path / name
+        ignore = shutil.ignore_patterns("__pycache__")
+        shutil.copytree(Path(compiled.__file__).parents[1], root / "harp_analysis", ignore=ignore)
+        for path in root.rglob("*"):
+            os.utime(path, (written, written))
+        return root
+
+    def warm_up(root: Path) -> dict:
+        env = {**os.environ, "HARP_ANALYSIS_KERNEL_CACHE": str(cache), "PYTHONPATH": str(root)}
+        env.pop("NUMBA_DISABLE_JIT", None)
+        run = subprocess.run(
+            [sys.executable, "-c", WARM_UP_AND_COUNT],
+            cwd=root,
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=300,
+            check=False,
+        )
+        assert run.returncode == 0, run.stderr
+        counts = json.loads(run.stdout.splitlines()[-1])
+        assert counts["package"] == str(root / "harp_analysis" / "__init__.py")  # the copy's
+        return counts
+
+    def kept() -> dict:  # numba's index and data files, as written
+        return {
+            path: (path.stat().st_size, path.stat().st_mtime_ns)
+            for path in cache.rglob("*")
+            if path.suffix in (".nbi", ".nbc")
+        }
+
+    first = checkout("first", now)
+    second = checkout("second", now - 400 * 86400)
+    compiled_first = warm_up(first)
+    assert compiled_first["misses"] > 0 and compiled_first["hits"] == 0  # an empty cache
+    saved = kept()
+    assert saved
+    loaded = warm_up(second)
+    assert loaded["misses"] == 0, "the second checkout compiled kernels the first had saved"
+    assert loaded["hits"] > 0
+    assert kept() == saved
+
+
+def test_the_kernels_folder_follows_the_toolchain_not_where_the_files_are(monkeypatch, tmp_path):
+    """The folder's name digests the compiler's versions (another numba, llvmlite, Python or
+    CPU compiles afresh); HARP_ANALYSIS_KERNEL_CACHE moves it, else it is the user's."""
+    import sys
+
+    import llvmlite
+    import numba
+    from numba.core.registry import cpu_target
+
+    toolchain = compiled._toolchain()
+    cpu = cpu_target.target_context.codegen()._get_host_cpu_name()
+    for version in (numba.__version__, llvmlite.__version__, sys.version, cpu):
+        assert version in toolchain
+    monkeypatch.setenv("HARP_ANALYSIS_KERNEL_CACHE", str(tmp_path / "kernels"))
+    folder = compiled.cache_folder("harp_analysis.engines.mks")
+    assert folder.parent == tmp_path / "kernels"
+    assert compiled.cache_folder("harp_analysis.engines.mks") == folder
+    assert compiled.cache_folder("harp_analysis.engines.flight_grid") != folder
+    monkeypatch.setattr(compiled, "_toolchain", lambda: toolchain + " another numba")
+    assert compiled.cache_folder("harp_analysis.engines.mks") != folder
+    monkeypatch.delenv("HARP_ANALYSIS_KERNEL_CACHE")
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "user"))
+    assert compiled.cache_root() == tmp_path / "user" / "harp-analysis" / "kernels"
+    monkeypatch.delenv("XDG_CACHE_HOME")
+    monkeypatch.setenv("HOME", str(tmp_path / "home"))
+    assert compiled.cache_root() == tmp_path / "home" / ".cache" / "harp-analysis" / "kernels"
 
 
 def test_numba_s_debugging_switch_runs_the_same_physics_in_python():

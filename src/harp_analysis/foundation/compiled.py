@@ -2,15 +2,29 @@
 serve numpy and compiled code.
 
 The engines' inner loops (the 3DOF's right-hand side and integrator, the MKS's per-launch
-constants) run as machine code compiled by numba. Compilation happens once per version of the
-package: the machine code is cached on disk in a folder named by a digest of the sources the
-kernel's module reaches (numba itself would only notice a change in the file of the compiled
-function, not in a formula it calls from another module). Each engine with kernels has a
-``warm_up()`` that compiles them ahead of use; ``make`` calls it whenever the sources change,
-which keeps compilation out of the notebooks' critical path. Processes that compile the same
-kernel at once (two notebooks opened after an upgrade) take turns under a file lock per kernel,
-the later one loading what the first saved: unguarded, each compiles, and each reads, extends
-and rewrites numba's index of the kernel's cache files, which may lose the other's entries.
+constants) run as machine code compiled by numba. Compilation happens once per user, per version
+of the package and per compiler: the machine code is cached on disk in a folder named by a digest
+of what alone decides it (:func:`cache_folder`): the contents of every source file of the package
+the kernel's module reaches (numba itself would only notice a change in the file of the compiled
+function, not in a formula it calls from another module), and the versions that compile it
+(numba's, llvmlite's, Python's, and the CPU's name and features as numba sees them). Neither the
+files' paths nor their modification times count: every checkout, worktree, virtual environment
+and CI run of the same sources and versions on a machine shares the one folder, so a fresh clone
+loads the kernels another compiled (numba's own cache, keyed by each file's location, would
+compile them all again). The folders live in the user's cache folder,
+``$XDG_CACHE_HOME/harp-analysis/kernels`` (``~/.cache/harp-analysis/kernels`` if
+``XDG_CACHE_HOME`` is unset); ``HARP_ANALYSIS_KERNEL_CACHE`` names another folder to keep them in
+(``NUMBA_CACHE_DIR``, if set and it is not, puts them in its ``harp-analysis/kernels``).
+A folder no version uses any more is never read again, and may be deleted. (An error raised inside
+a kernel that was loaded names, in its traceback, the file of the checkout that compiled it: the
+same source, line for line, elsewhere.)
+
+Each engine with kernels has a ``warm_up()`` that compiles them ahead of use (or loads them);
+``make`` calls it whenever the sources change, which keeps compilation out of the notebooks'
+critical path. Processes that compile the same kernel at once (two notebooks opened after an
+upgrade, two checkouts' ``make``) take turns under a file lock per kernel in its folder, the later
+one loading what the first saved: unguarded, each compiles, and each reads, extends and rewrites
+numba's index of the kernel's cache files, which may lose the other's entries.
 
 The physics is written once. A formula meant for both worlds is decorated :func:`formula`: it
 stays a plain Python function that numpy runs on arrays, and compiled code inlines the same
@@ -26,21 +40,27 @@ import ast
 import hashlib
 import os
 import sys
-import threading
 from bisect import bisect_right
 from collections.abc import Callable
 from functools import cache
 from pathlib import Path
 from typing import Any, TypeVar
 
+import llvmlite
 import numba
 import numpy as np
 from filelock import FileLock
 from numba import types
+from numba.core.caching import (
+    CompileResultCacheImpl,
+    FunctionCache,
+    NullCache,
+    _CacheLocator,
+)
 from numba.core.compiler_lock import global_compiler_lock
 from numba.extending import overload, register_jitable
 
-__all__ = ["jit", "formula", "select", "vector", "cache_folder"]
+__all__ = ["jit", "formula", "select", "vector", "cache_folder", "cache_root"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -109,29 +129,95 @@ def _sources(module_name: str) -> list[Path]:
     return sorted(seen)
 
 
+def cache_root() -> Path:
+    """The folder that holds the kernels' folders: ``HARP_ANALYSIS_KERNEL_CACHE`` if set, else
+    ``harp-analysis/kernels`` in ``NUMBA_CACHE_DIR`` if that is set, else in the user's cache
+    folder (``XDG_CACHE_HOME``, by default ``~/.cache``)."""
+    if chosen := os.environ.get("HARP_ANALYSIS_KERNEL_CACHE"):
+        return Path(chosen)
+    root = os.environ.get("NUMBA_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME")
+    return Path(root or Path.home() / ".cache") / "harp-analysis" / "kernels"
+
+
 def cache_folder(module_name: str) -> Path:
-    """Where the compiled kernels of ``module_name`` are kept: under ``NUMBA_CACHE_DIR`` if set,
-    else the user's cache folder, in a folder named by a digest of every source file of the
+    """Where the compiled kernels of ``module_name`` are kept: in :func:`cache_root`, in a
+    folder named by a digest of the module's name, of the contents of every source file of the
     package that the module reaches, as they are now (an edit to any of them, or a reload after
-    one, compiles afresh)."""
+    one, compiles afresh), and of :func:`_toolchain` (another numba, llvmlite, Python or CPU
+    compiles afresh). Where the files are, and when they were written, does not count."""
     sources = tuple(_sources(module_name))
-    digest = _digest(sources, tuple(_stamp(source) for source in sources))
-    root = os.environ.get("NUMBA_CACHE_DIR") or Path(
-        os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
-    )
-    return Path(root) / "harp-analysis" / digest
+    stamps = tuple(_stamp(source) for source in sources)
+    return cache_root() / _digest(module_name, sources, stamps, _toolchain())
 
 
 @cache
-def _digest(sources: tuple[Path, ...], stamps: tuple) -> str:
-    """The digest of ``sources`` at these modification times and sizes (read once each)."""
-    digest = hashlib.sha256()
-    for source in sources:
-        digest.update(source.name.encode() + source.read_bytes())
+def _toolchain() -> str:
+    """What compiles the kernels, as numba sees it: numba's, llvmlite's and Python's versions,
+    and the target (numba's "magic tuple": the triple, the CPU's name and its features, with
+    ``NUMBA_CPU_NAME`` and ``NUMBA_CPU_FEATURES`` applied), which numba also keys its index by."""
+    from numba.core.registry import cpu_target
+
+    python = f"{sys.implementation.cache_tag}{sys.abiflags} {sys.version}"
+    target = cpu_target.target_context.codegen().magic_tuple()
+    return repr((numba.__version__, llvmlite.__version__, python, target))
+
+
+@cache
+def _digest(module_name: str, sources: tuple[Path, ...], stamps: tuple, toolchain: str) -> str:
+    """The digest of ``module_name``, of ``sources`` at these modification times and sizes
+    (read once each; each named by its path in the package, the times not hashed) and of
+    ``toolchain``."""
+    digest = hashlib.sha256(f"{module_name}\n{toolchain}\n".encode())
+    for name, source in sorted((_name_in_package(source), source) for source in sources):
+        content = source.read_bytes()
+        digest.update(f"{name}\n{len(content)}\n".encode() + content)
     return digest.hexdigest()[:16]
 
 
-_CACHE_DIR_LOCK = threading.Lock()  # numba reads its global CACHE_DIR where caching starts
+def _name_in_package(source: Path) -> str:
+    """``source``'s path within the package (``engines/mks.py``), or its name if outside it (a
+    module of the caller's that compiles kernels with :func:`jit`)."""
+    return (
+        source.relative_to(_PACKAGE).as_posix() if source.is_relative_to(_PACKAGE) else source.name
+    )
+
+
+class _ContentLocator(_CacheLocator):
+    """Tells numba where a kernel's cache files are (:func:`cache_folder` of its module) and
+    what stamps their sources (the folder's digest), not numba's default: a folder named by
+    the source file's location and a stamp of that one file, which put each checkout's kernels
+    apart. numba's index within the folder is named by the module's file name, the function's
+    name and its first line (and the Python version), and keys each entry by the signature,
+    the target and the function's bytecode: none of them depends on a path or a time."""
+
+    def __init__(self, py_func: Callable, py_file: str) -> None:
+        self._py_file = py_file  # numba's warnings name it
+        self._lineno = py_func.__code__.co_firstlineno
+        self._folder = cache_folder(py_func.__module__)
+
+    @classmethod
+    def from_function(cls, py_func: Callable, py_file: str) -> _ContentLocator:
+        return cls(py_func, py_file)
+
+    def get_cache_path(self) -> str:
+        return str(self._folder)
+
+    def get_source_stamp(self) -> str:
+        return self._folder.name
+
+    def get_disambiguator(self) -> str:
+        return str(self._lineno)
+
+
+class _KernelCacheImpl(CompileResultCacheImpl):
+    _locator_classes = [_ContentLocator]
+
+
+class _KernelCache(FunctionCache):
+    """numba's cache of a dispatcher's compiled signatures, kept where :class:`_ContentLocator`
+    says."""
+
+    _impl_class = _KernelCacheImpl
 
 
 def jit(function: F | None = None, *, inline: bool = False) -> Any:
@@ -141,18 +227,15 @@ def jit(function: F | None = None, *, inline: bool = False) -> Any:
     otherwise costs reference counting, tens of nanoseconds in a right-hand side."""
     if function is None:
         return lambda function: jit(function, inline=inline)
+    dispatcher: Any = numba.njit(inline="always" if inline else "never")(function)
     config: Any = numba.config
-    folder = cache_folder(function.__module__)
-    with _CACHE_DIR_LOCK:
-        previous, config.CACHE_DIR = config.CACHE_DIR, str(folder)
-        try:
-            dispatcher: Any = numba.njit(cache=True, inline="always" if inline else "never")(
-                function
-            )
-        finally:
-            config.CACHE_DIR = previous
     if config.DISABLE_JIT:  # NUMBA_DISABLE_JIT=1, for debugging: njit returned the function
         return dispatcher
+    # what njit(cache=True) does (Dispatcher.enable_caching), with the cache found by content
+    if not isinstance(getattr(dispatcher, "_cache", None), NullCache):
+        raise RuntimeError(f"numba {numba.__version__}'s dispatcher keeps no _cache to replace")
+    dispatcher._cache = _KernelCache(function)
+    folder = Path(dispatcher._cache.cache_path)
     # numba compiles through this method at a first call, for a compiled caller and at warm-up
     lock = folder / f"{function.__qualname__}-{function.__code__.co_firstlineno}.lock"
     dispatcher.compile = _under_lock(dispatcher.compile, lock)

@@ -3,7 +3,8 @@
 An engine that learns a table from its own flights (:mod:`harp_analysis.engines.calibrated_mks`)
 computes it once per user and version of the physics: the arrays are saved in the user's cache
 folder beside the compiled kernels (:func:`.compiled.cache_folder`, named by a digest of every
-source file the computing module reaches, so an edit to the physics computes afresh), under a
+source file the computing module reaches and of the compiler's versions, so an edit to the
+physics computes afresh, and every checkout of the same sources shares them), under a
 name that is a digest of the key the caller gives (what the table was learned from). Processes
 computing the same table at once take turns under a file lock, the later one loading what the
 first saved; a file is written to a temporary name and renamed into place, so a reader never
