@@ -98,9 +98,16 @@ def _grid_step(top_m: float, step_m: float, name: str = "step_m") -> float:
     return step_m
 
 
+#: Where the Earth's gravity stops holding a body against the Sun's (its Hill sphere's radius,
+#: m): no air model means anything beyond, and the formulas' temperatures, growing with height,
+#: overflow far above it.
+_HILL_SPHERE_M = 1.5e9
+
+
 def _altitudes(altitude_m, *, ceiling_m: float | None = None) -> np.ndarray:
     altitude = real_array(altitude_m, "altitude_m")
-    return check_range(altitude, "altitude_m", low=0.0, high=ceiling_m, unit="m")
+    high = _HILL_SPHERE_M if ceiling_m is None else ceiling_m
+    return check_range(altitude, "altitude_m", low=0.0, high=high, unit="m")
 
 
 @cache
