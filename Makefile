@@ -22,10 +22,12 @@ $(STAMP): environment.txt pyproject.toml
 # is the user's (~/.cache/harp-analysis/kernels, or HARP_ANALYSIS_KERNEL_CACHE), found by the
 # sources' contents alone: in a fresh clone of sources compiled before, this loads in seconds.
 $(KERNELS): $(STAMP) $(shell find src/harp_analysis -name '*.py')
-	$(BIN)/python -c "from harp_analysis.engines import flight_grid, mks, mks_improved, mlt, sixdof, threedof; \
+	$(BIN)/python -c "from harp_analysis.engines import threedof; threedof.warm_up()" & \
+	threedof=$$!; \
+	$(BIN)/python -c "from harp_analysis.engines import flight_grid, mks, mks_improved, mlt, sixdof; \
 		from harp_analysis.analyses.fire_control import solver as firing_solver; \
-		threedof.warm_up(); sixdof.warm_up(); mlt.warm_up(); mks.warm_up(); mks_improved.warm_up(); \
-		firing_solver.warm_up(); flight_grid.warm_up()"
+		sixdof.warm_up(); mlt.warm_up(); mks.warm_up(); mks_improved.warm_up(); \
+		firing_solver.warm_up(); flight_grid.warm_up()" && wait $$threedof
 	touch $@
 
 # Figures go to the committed figures/ only here; notebooks run elsewhere write to a scratch

@@ -155,6 +155,61 @@ def test_processes_compiling_a_kernel_at_once_compile_it_once(tmp_path):
     assert int(third.communicate(timeout=300)[0]) == 0 and third.returncode == 0
 
 
+PART_MODULE = """
+from harp_analysis.foundation.compiled import jit
+
+
+@jit(cache=False)
+def part(x, power):
+    return x**power
+
+
+@jit
+def kernel(x):
+    return part(x, 3) + part(x, 2)
+"""
+# calls the kernel; prints the kernel's signatures loaded and compiled and the part's compiled
+CALL_KERNEL = """
+import kernel_parts
+assert kernel_parts.kernel(2.0) == 12.0
+print(sum(kernel_parts.kernel.stats.cache_hits.values()),
+      sum(kernel_parts.kernel.stats.cache_misses.values()), len(kernel_parts.part.signatures))
+"""
+
+
+def test_a_part_kept_in_memory_is_cached_within_its_kernel(tmp_path):
+    """A function compiled only within cached kernels (``jit(cache=False)``, the 3DOF's
+    integrator) writes no cache file and takes no lock of its own, so that processes compiling
+    different kernels do not wait for one another; a fresh process loads the kernel whole,
+    compiling neither it nor the part."""
+    import os
+    import subprocess
+    import sys
+
+    (tmp_path / "kernel_parts.py").write_text(PART_MODULE)
+    cache = tmp_path / "cache"
+    env = {**os.environ, "HARP_ANALYSIS_KERNEL_CACHE": str(cache), "PYTHONPATH": str(tmp_path)}
+    env.pop("NUMBA_DISABLE_JIT", None)
+
+    def call() -> list[int]:
+        run = subprocess.run(
+            [sys.executable, "-c", CALL_KERNEL],
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=300,
+            check=False,
+        )
+        assert run.returncode == 0, run.stderr
+        return [int(word) for word in run.stdout.split()]
+
+    assert call() == [0, 1, 2]  # compiled: the kernel once, the part for each literal power
+    names = {path.name for path in cache.rglob("*") if path.is_file()}
+    assert any(name.startswith("kernel_parts.kernel") for name in names)
+    assert not any("part-" in name or ".part" in name for name in names), names
+    assert call() == [1, 0, 0]  # loaded whole: the part's machine code is in the kernel's file
+
+
 # warms one engine up (flight_grid's: its one kernel is the cheapest to compile) and prints the
 # package's file and how many signatures every kernel of the package loaded and compiled
 WARM_UP_AND_COUNT = """

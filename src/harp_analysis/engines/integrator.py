@@ -184,7 +184,7 @@ def hermite(t0, t1, y0, y1, a0, a1, t, out):
         ) / h
 
 
-@jit(inline=True)
+@jit
 def event_value(kind, level, y):
     """The event function of ``kind`` at state ``y``: r.v, or the altitude minus ``level``."""
     if kind == RADIAL_VELOCITY:

@@ -175,7 +175,7 @@ _AT_END, _MAX_TIME, _GROUND = (
 )
 
 
-@jit(inline=True)
+@jit
 def _crosses(level, sign, y, y_new):
     """Whether the step from ``y`` to ``y_new`` crosses ``level`` falling (``sign`` +1) or
     rising (-1), from on the level (within its rounding) included."""
@@ -183,7 +183,7 @@ def _crosses(level, sign, y, y_new):
     return sign * above > -_ON_LEVEL_M and 0 >= sign * after
 
 
-@jit(inline=True)
+@jit
 def _apogee_cut(level, t, hi, y, y_new, a, a_new, work):
     """The step (s) up to the apogee where the step from ``y`` starts on or below ``level``,
     turns over and ends below it, else 0: such a step may cross the level twice unseen. A
@@ -202,7 +202,7 @@ def _apogee_cut(level, t, hi, y, y_new, a, a_new, work):
     return 0.0
 
 
-@jit(inline=True)
+@jit(cache=False)  # compiled per pair of models within its kernels (:func:`_kernels`)
 def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
     """One flight from ``y0`` until it crosses its end level, falls back to the ground without
     crossing it, or reaches ``t_max_s``; ``numerics`` is ``(end_m, end_sign, ground_m,
@@ -221,15 +221,18 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
     grounded = end_sign < 0 or ground_m < end_m
     k = np.empty((STAGES + 1, 6))
     y, y_new, work = y0.copy(), np.empty(6), np.empty(6)
-    start = np.empty((2, 6))  # y' at the start and a trial step later
-    _derivative(0.0, y, weather, air_code, drag_code, dynamics, start, 0)
+    start = np.empty((2, 6))  # y' at the start and a trial step h0 later
     scale = np.empty(6)
     for i in range(6):
         scale[i] = rtol * max(abs(y[i]), floor[i])
-    h0 = trial_step(y, start[0], scale)
-    for i in range(6):
-        work[i] = y[i] + h0 * start[0, i]
-    _derivative(h0, work, weather, air_code, drag_code, dynamics, start, 1)
+    h0 = 0.0
+    work[:] = y
+    for trial in range(2):  # in a loop: each call site compiles the right-hand side anew
+        _derivative(h0, work, weather, air_code, drag_code, dynamics, start, trial)
+        if trial == 0:
+            h0 = trial_step(y, start[0], scale)
+            for i in range(6):
+                work[i] = y[i] + h0 * start[0, i]
     h = first_step(h0, start[0], start[1], scale, max_step_s)
     evaluations = 2
     a, a_new = start[0, 3:].copy(), np.empty(3)
@@ -480,9 +483,11 @@ def _summarise(event_times, states, outcomes, axes, omega, max_time_s):
 def _kernels(air_code: int, drag_code: int):
     """The flights and the table rows compiled for one atmosphere and drag law: their numbers
     are constants of the machine code, so the other models' branches fold away (half the time
-    of a right-hand side). Compiled at first use (:func:`warm_up`), then loaded from disk;
-    each pair has cache files of its own, so that processes may compile different pairs at
-    once."""
+    of a right-hand side). They reach :func:`_integrate` as literal arguments, which numba
+    compiles once per value: each pair gets an integrator of its own, its right-hand side
+    inlined, while the code that knows no model (setup, events, summary) is compiled once for
+    all. Compiled at first use (:func:`warm_up`), then loaded from disk; each pair has cache
+    files of its own, so that processes may compile different pairs at once."""
 
     def fly(columns, dynamics, numerics, site_m, record):
         omega = dynamics[_OMEGA]
@@ -825,7 +830,7 @@ def _warm_up_pair(projectile_name: str, atmosphere: str) -> None:
 
 def warm_up(processes: int | None = None) -> None:
     """Compile the 3DOF's kernels now (or load them from the disk cache), not at first use: one
-    per pair of atmosphere and drag law of the named projectiles (about 15 s each, once). The
+    per pair of atmosphere and drag law of the named projectiles (about 8 s each, once). The
     first pair compiles what every pair shares; the others are shared out among ``processes``
     (default: one per core), each compiling pairs no other compiles."""
     from ..models.atmosphere import ATMOSPHERE_NAMES

@@ -220,16 +220,25 @@ class _KernelCache(FunctionCache):
     _impl_class = _KernelCacheImpl
 
 
-def jit(function: F | None = None, *, inline: bool = False) -> Any:
+def jit(function: F | None = None, *, inline: bool = False, cache: bool = True) -> Any:
     """``function`` compiled in nopython mode and cached in :func:`cache_folder`, without
-    fast-math (IEEE results, as numpy's where the operations are the same). ``inline=True``
-    (as ``@jit(inline=True)``) inlines it into compiled callers: a call that passes arrays
-    otherwise costs reference counting, tens of nanoseconds in a right-hand side."""
+    fast-math (IEEE results, as numpy's where the operations are the same).
+
+    ``inline=True`` (as ``@jit(inline=True)``) inlines it into compiled callers in numba's own
+    representation, before typing: a call that passes arrays otherwise costs reference counting,
+    tens of nanoseconds in a right-hand side. Each call site copies the callee's code whole and
+    types it again (most of a kernel's compilation, measured), so inline only what runs at every
+    step; LLVM inlines small callees of the others by itself.
+
+    ``cache=False`` keeps the machine code in memory only, for a function compiled only as a
+    part of cached kernels (whose files hold it): one cache per kernel, not one shared by them,
+    lets processes compile different kernels at once (each cached function is compiled under
+    its own file lock)."""
     if function is None:
-        return lambda function: jit(function, inline=inline)
+        return lambda function: jit(function, inline=inline, cache=cache)
     dispatcher: Any = numba.njit(inline="always" if inline else "never")(function)
     config: Any = numba.config
-    if config.DISABLE_JIT:  # NUMBA_DISABLE_JIT=1, for debugging: njit returned the function
+    if config.DISABLE_JIT or not cache:  # NUMBA_DISABLE_JIT=1 (debugging) returned the function
         return dispatcher
     # what njit(cache=True) does (Dispatcher.enable_caching), with the cache found by content
     if not isinstance(getattr(dispatcher, "_cache", None), NullCache):
