@@ -374,3 +374,18 @@ def test_relative_imports_resolve_from_the_importing_file_s_own_folder(tmp_path)
         tmp_path / "models" / "__init__.py",
         tmp_path / "engines" / "helper.py",
     }
+
+
+def _inverse(x):
+    return 1.0 / x
+
+
+def test_zero_division_follows_python_unless_asked_for_ieee():
+    """A kernel's ``/`` by zero raises as Python's does, or gives inf as numpy's does when
+    compiled with zero_division="ieee"; any other choice is refused by name."""
+    with pytest.raises(ZeroDivisionError):
+        compiled.jit(_inverse, cache=False)(0.0)
+    assert compiled.jit(_inverse, cache=False, zero_division="ieee")(0.0) == np.inf
+    assert compiled.jit(_inverse, cache=False, zero_division="ieee")(-0.0) == -np.inf
+    with pytest.raises(ValueError, match="zero_division"):
+        compiled.jit(_inverse, zero_division="numpy")

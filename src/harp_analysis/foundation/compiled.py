@@ -220,7 +220,13 @@ class _KernelCache(FunctionCache):
     _impl_class = _KernelCacheImpl
 
 
-def jit(function: F | None = None, *, inline: bool = False, cache: bool = True) -> Any:
+def jit(
+    function: F | None = None,
+    *,
+    inline: bool = False,
+    cache: bool = True,
+    zero_division: str = "raise",
+) -> Any:
     """``function`` compiled in nopython mode and cached in :func:`cache_folder`, without
     fast-math (IEEE results, as numpy's where the operations are the same).
 
@@ -233,10 +239,21 @@ def jit(function: F | None = None, *, inline: bool = False, cache: bool = True) 
     ``cache=False`` keeps the machine code in memory only, for a function compiled only as a
     part of cached kernels (whose files hold it): one cache per kernel, not one shared by them,
     lets processes compile different kernels at once (each cached function is compiled under
-    its own file lock)."""
+    its own file lock).
+
+    ``zero_division="ieee"`` lets ``/`` by zero give inf or NaN as numpy's does, where Python's
+    rule (``"raise"``, the default) raises ZeroDivisionError: a test and a branch at every
+    division (numba's ``error_model``), for a kernel that checks its results for them itself."""
+    if zero_division not in ("raise", "ieee"):
+        raise ValueError(f"zero_division must be 'raise' or 'ieee'; got {zero_division!r}")
     if function is None:
-        return lambda function: jit(function, inline=inline, cache=cache)
-    dispatcher: Any = numba.njit(inline="always" if inline else "never")(function)
+        return lambda function: jit(
+            function, inline=inline, cache=cache, zero_division=zero_division
+        )
+    dispatcher: Any = numba.njit(
+        inline="always" if inline else "never",
+        error_model="numpy" if zero_division == "ieee" else "python",
+    )(function)
     config: Any = numba.config
     if config.DISABLE_JIT or not cache:  # NUMBA_DISABLE_JIT=1 (debugging) returned the function
         return dispatcher

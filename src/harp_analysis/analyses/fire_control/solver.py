@@ -177,7 +177,7 @@ def _shot(gun, flags, elevation, bearing, target, work):
     climb = dot(velocity, up)
     along = (velocity[0] - climb * up[0], velocity[1] - climb * up[1], velocity[2] - climb * up[2])
     size = math.sqrt(dot(along, along))
-    r = 1.0 / mks.point(table, 0, tau, theta)[0]
+    r = 1.0 / mks.u_at(table, 0, tau, theta)
     c, s = r * math.cos(theta), r * math.sin(theta) / size
     x, y = turned_about_axis(
         c * up[0] + s * along[0], c * up[1] + s * along[1], -gun[_OMEGA] * time
