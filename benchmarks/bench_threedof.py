@@ -14,8 +14,9 @@ the impact's time, range, cross range, speed and state), and no more work than t
 - the air's 10.769 km breakpoint: there the density jumps by 0.05 %, and a Runge-Kutta step
   whose stages straddle it takes an O(h) error that the step control can only reject away. So
   each step flies one layer's formulas, chosen at its start, and a trial step that would end
-  beyond the breakpoint is cut to end on it (the package also cuts such steps, but its
-  right-hand side picks the layer by altitude, stage by stage);
+  beyond the breakpoint is cut to end on it (the package cuts such steps a little short of it
+  and carries the state across on the step's interpolant, its right-hand side picking the
+  layer by altitude);
 - the apogee and the impact located on each step's quintic Hermite interpolant (from both ends'
   positions, velocities and accelerations, free with DOP853's last stage) by Illinois
   iterations, with no step re-integrated;

@@ -272,11 +272,14 @@ def test_a_denser_day_flies_as_a_lighter_projectile(engine):
             engine.fly(HP_CHAPTER_2.but(density_change_fraction=0.08))
         return
     lighter = dataclasses.replace(HP, name="HP lighter", mass_kg=HP.mass_kg / 1.08)
-    denser_day = _fly(engine, HP_CHAPTER_2.but(density_change_fraction=0.08)).attrs
-    light_round = _fly(engine, HP_CHAPTER_2.but(projectile=lighter)).attrs
+    # At rtol 1e-9 the 3DOF lands each within about 1.5e-8 of its range, on step sequences of
+    # their own (measured against rtol 1e-13): flown at 1e-11, alike well within 1e-8
+    options = {"rtol": 1e-11} if engine.tolerance == "rtol" else {}
+    denser_day = _fly(engine, HP_CHAPTER_2.but(density_change_fraction=0.08), **options).attrs
+    light_round = _fly(engine, HP_CHAPTER_2.but(projectile=lighter), **options).attrs
     normal = _fly(engine, HP_CHAPTER_2).attrs
     assert denser_day["apogee_altitude_m"] < normal["apogee_altitude_m"] - 100.0
-    for key in ("apogee_altitude_m", "range_m", "time_of_flight_s"):  # to the rtol of 1e-9
+    for key in ("apogee_altitude_m", "range_m", "time_of_flight_s"):
         assert denser_day[key] == pytest.approx(
             light_round[key], rel=DAY_TOLERANCE.get(engine.name, 1e-8)
         )

@@ -490,7 +490,7 @@ _TYPED += [
     ),
     (
         "ch2.3dof_more_efficient_than_6dof",
-        "about 56 times",
+        "about 70 times",
         lambda: f"about {10 ** effort.orders_of_magnitude(method='6DOF', than='3DOF'):.0f} times",
     ),
     (
