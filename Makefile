@@ -96,6 +96,7 @@ benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_figures.py
 	$(BIN)/python benchmarks/bench_mks_improved.py
 	$(BIN)/python benchmarks/bench_calibrated_mks.py
+	$(BIN)/python benchmarks/cold_compile.py
 
 clean-venv:
 	rm -rf $(VENV)

@@ -177,31 +177,38 @@ print(sum(kernel_parts.kernel.stats.cache_hits.values()),
 """
 
 
+def _fresh_python(code: str, cache, path, cwd=None) -> str:
+    """What ``code`` prints in a fresh, compiling interpreter (``NUMBA_DISABLE_JIT`` dropped)
+    that imports from ``path`` and keeps its kernels in ``cache``."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "HARP_ANALYSIS_KERNEL_CACHE": str(cache), "PYTHONPATH": str(path)}
+    env.pop("NUMBA_DISABLE_JIT", None)
+    run = subprocess.run(
+        [sys.executable, "-c", code],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    assert run.returncode == 0, run.stderr
+    return run.stdout
+
+
 def test_a_part_kept_in_memory_is_cached_within_its_kernel(tmp_path):
     """A function compiled only within cached kernels (``jit(cache=False)``, the 3DOF's
     integrator) writes no cache file and takes no lock of its own, so that processes compiling
     different kernels do not wait for one another; a fresh process loads the kernel whole,
     compiling neither it nor the part."""
-    import os
-    import subprocess
-    import sys
-
     (tmp_path / "kernel_parts.py").write_text(PART_MODULE)
     cache = tmp_path / "cache"
-    env = {**os.environ, "HARP_ANALYSIS_KERNEL_CACHE": str(cache), "PYTHONPATH": str(tmp_path)}
-    env.pop("NUMBA_DISABLE_JIT", None)
 
     def call() -> list[int]:
-        run = subprocess.run(
-            [sys.executable, "-c", CALL_KERNEL],
-            env=env,
-            capture_output=True,
-            text=True,
-            timeout=300,
-            check=False,
-        )
-        assert run.returncode == 0, run.stderr
-        return [int(word) for word in run.stdout.split()]
+        return [int(word) for word in _fresh_python(CALL_KERNEL, cache, tmp_path).split()]
 
     assert call() == [0, 1, 2]  # compiled: the kernel once, the part for each literal power
     names = {path.name for path in cache.rglob("*") if path.is_file()}
@@ -236,8 +243,6 @@ def test_a_second_checkout_loads_what_the_first_compiled(tmp_path):
     import json
     import os
     import shutil
-    import subprocess
-    import sys
     import time
     from pathlib import Path
 
@@ -253,19 +258,8 @@ def test_a_second_checkout_loads_what_the_first_compiled(tmp_path):
         return root
 
     def warm_up(root: Path) -> dict:
-        env = {**os.environ, "HARP_ANALYSIS_KERNEL_CACHE": str(cache), "PYTHONPATH": str(root)}
-        env.pop("NUMBA_DISABLE_JIT", None)
-        run = subprocess.run(
-            [sys.executable, "-c", WARM_UP_AND_COUNT],
-            cwd=root,
-            env=env,
-            capture_output=True,
-            text=True,
-            timeout=300,
-            check=False,
-        )
-        assert run.returncode == 0, run.stderr
-        counts = json.loads(run.stdout.splitlines()[-1])
+        printed = _fresh_python(WARM_UP_AND_COUNT, cache, root, cwd=root)
+        counts = json.loads(printed.splitlines()[-1])
         assert counts["package"] == str(root / "harp_analysis" / "__init__.py")  # the copy's
         return counts
 
