@@ -398,10 +398,12 @@ def _fly_all(y0, weather, air_code, drag_code, dynamics, numerics, record):
     return event_times, states, counts, step_times, steps
 
 
-@jit(inline=True)
+@jit
 def _rows(times_s, step_times, steps, weather, axes, air_code, drag_code, dynamics):
     """The trajectory table at ``times_s`` within the recorded steps of launch 0: one row (m,
-    13) per time, with :data:`trajectory.BASE_COLUMNS` in their order."""
+    13) per time, with :data:`trajectory.BASE_COLUMNS` in their order. One kernel for every
+    atmosphere and drag law, their codes read at run time: it evaluates the forces once a row,
+    not twelve times a step, and one compilation serves the ten pairs."""
     m = times_s.size
     table, y = np.empty((m, 13)), np.empty(6)
     up = (axes[0, 0, 0], axes[0, 1, 0], axes[0, 2, 0])
@@ -517,7 +519,7 @@ def _summarise(event_times, states, outcomes, axes, omega, max_time_s):
 
 @cache
 def _kernels(air_code: int, drag_code: int):
-    """The flights and the table rows compiled for one atmosphere and drag law: their numbers
+    """The flights compiled for one atmosphere and drag law: their numbers
     are constants of the machine code, so the other models' branches fold away (half the time
     of a right-hand side). They reach :func:`_integrate` as literal arguments, which numba
     compiles once per value: each pair gets an integrator of its own, its right-hand side
@@ -534,12 +536,8 @@ def _kernels(air_code: int, drag_code: int):
         summary = _summarise(event_times, states, counts[3], axes, omega, numerics[4])
         return summary, counts, weather, axes, step_times, steps
 
-    def rows(times_s, step_times, steps, weather, axes, dynamics):
-        return _rows(times_s, step_times, steps, weather, axes, air_code, drag_code, dynamics)
-
-    for kernel in (fly, rows):  # numba names a cache file after the function
-        kernel.__qualname__ = f"{kernel.__name__}_air{air_code}_drag{drag_code}"
-    return jit(fly), jit(rows)
+    fly.__qualname__ = f"fly_air{air_code}_drag{drag_code}"  # numba names its cache file so
+    return jit(fly)
 
 
 def _numerics(rtol, max_time_s):
@@ -631,7 +629,7 @@ def _fly(batch: _Batch, max_time_s: float, rtol: float, record: bool, end=None, 
     """The compiled flights of ``batch`` to the site's altitude, or to ``end`` (m) rising where
     ``rising`` (one of each, or arrays (n,)), each stopped at the ground if it never gets
     there; FloatingPointError if one cannot be integrated."""
-    fly, _ = _kernels(*batch.codes)
+    fly = _kernels(*batch.codes)
     numerics = (
         np.array(batch.site_m if end is None else end, dtype=float, ndmin=1),
         np.where(rising, -1.0, 1.0).astype(float).reshape(-1),
@@ -933,8 +931,14 @@ def simulate_3dof(
     impact = summary[7, 0] == _AT_END  # the site's altitude: every flight not cut off gets there
     end_t = summary[3, 0] if impact else step_times[-1]
     times = output_times(end_t, step)
-    rows = _kernels(*batch.codes)[1](
-        times, step_times, steps, np.ascontiguousarray(weather[:, 0]), axes, batch.dynamics
+    rows = _rows(
+        times,
+        step_times,
+        steps,
+        np.ascontiguousarray(weather[:, 0]),
+        axes,
+        *batch.codes,
+        batch.dynamics,
     )
     apogee_t = summary[0, 0]
     return describe(
