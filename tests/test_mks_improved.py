@@ -273,14 +273,35 @@ def test_warns_where_the_air_carries_much_of_the_angular_momentum():
     assert mks_improved.air_momentum_share(baseline_chapter_4(45.0)) == 0.0
 
 
-def test_a_westward_descent_that_loses_all_its_momentum_is_named():
-    """Fired west from Barbados at 30.8 deg, the air turning with the Earth drags the descent's
-    inertial h toward its own: a trial step of the re-entry march lost all of h and divided by
-    zero (ZeroDivisionError, issue 25); now the march shortens such a step, as scipy's does,
-    and the decay that still loses all of h is refused by name."""
+WESTWARD = {
+    # Barbados at 30.8 deg: a trial step of the re-entry march lost all of h (issue 25)
+    "Barbados": dict(
+        elevation_deg=30.845228653704602,
+        bearing_deg=269.9255856283873,
+    ),
+    # a judging launch of bench_calibrated_mks (seed 8): its march divided by zero elsewhere,
+    # one CI run in ten drew such a launch
+    "judged": dict(
+        speed_m_s=1737.4792937999712,
+        elevation_deg=34.52519019462498,
+        bearing_deg=275.92821269285685,
+        latitude_deg=-17.302772339443926,
+        longitude_deg=108.08976626372919,
+        density_change_fraction=0.03453505051614414,
+    ),
+}
+
+
+@pytest.mark.parametrize("changes", WESTWARD.values(), ids=WESTWARD)
+def test_a_westward_descent_that_loses_all_its_momentum_is_named(changes):
+    """Fired west, the air turning with the Earth drags the descent's inertial h toward its
+    own: the re-entry march divided by zero (ZeroDivisionError: the march compiled with
+    Python's division, where uncompiled numpy gives inf); the march shortens a trial step that
+    loses all of h, as scipy's does (issue 25), divides as numpy does, and the decay that
+    still loses all of h is refused by name."""
     from harp_analysis.analyses.fire_control.firing import BARBADOS_HP
 
-    launch = BARBADOS_HP.but(elevation_deg=30.845228653704602, bearing_deg=269.9255856283873)
+    launch = BARBADOS_HP.but(**changes)
     with pytest.raises(ValueError, match="loses all of h before the impact"):
         mks_improved.solve(launch)
     assert math.isfinite(mks_improved.dissertation(launch).apogee_altitude_m)

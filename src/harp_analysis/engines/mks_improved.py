@@ -387,7 +387,9 @@ def _crossing(path, tau, radius, level, low, high):
     return low, high
 
 
-@jit
+# IEEE division, as numpy's: a descent whose decay loses all of h before the impact divides by
+# zero somewhere in the march, and its loss, inf or NaN, is what _reentry_decay refuses by name
+@jit(zero_division="ieee")
 def _reentry_losses(path, tau, h_inf, apogee, impact, radius, breakpoints, air, rtol, atol):
     """Along the MKS's descent from the top of the atmosphere to its impact, flown with the
     speed it loses: the angles (n,), the loss L on them and 1 / its mean distance before the
