@@ -54,11 +54,12 @@ def _accuracy(smoke: bool) -> None:
     guns = (Gun(BASELINE),) if smoke else None
     per_gun = 2 if smoke else 40
     seed = _seed()
+    print(f"Judging launches drawn with seed {seed} (--seed {seed} draws them again)", flush=True)
     judged = mks_calibration.judge(per_gun, seed, guns)
     print(
         f"Accuracy on {len(judged)} launches never calibrated on ({judged.projectile.nunique()} "
-        f"projectiles, {len(judged.groupby(['projectile', 'latitude_deg', 'turning']))} guns, "
-        f"drawn with seed {seed}: --seed {seed} draws them again), against the 3DOF:"
+        f"projectiles, {len(judged.groupby(['projectile', 'latitude_deg', 'turning']))} guns), "
+        "against the 3DOF:"
     )
     print(
         f"  {'measure':18s} {'calibrated RMS':>15s} {'ECI MKS RMS':>12s} {'ratio':>7s} "
