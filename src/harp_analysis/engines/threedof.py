@@ -398,12 +398,10 @@ def _fly_all(y0, weather, air_code, drag_code, dynamics, numerics, record):
     return event_times, states, counts, step_times, steps
 
 
-@jit
+@jit(inline=True)
 def _rows(times_s, step_times, steps, weather, axes, air_code, drag_code, dynamics):
     """The trajectory table at ``times_s`` within the recorded steps of launch 0: one row (m,
-    13) per time, with :data:`trajectory.BASE_COLUMNS` in their order. One kernel for every
-    atmosphere and drag law, their codes read at run time: it evaluates the forces once a row,
-    not twelve times a step, and one compilation serves the ten pairs."""
+    13) per time, with :data:`trajectory.BASE_COLUMNS` in their order."""
     m = times_s.size
     table, y = np.empty((m, 13)), np.empty(6)
     up = (axes[0, 0, 0], axes[0, 1, 0], axes[0, 2, 0])
@@ -519,7 +517,7 @@ def _summarise(event_times, states, outcomes, axes, omega, max_time_s):
 
 @cache
 def _kernels(air_code: int, drag_code: int):
-    """The flights compiled for one atmosphere and drag law: their numbers
+    """The flights and the table rows compiled for one atmosphere and drag law: their numbers
     are constants of the machine code, so the other models' branches fold away (half the time
     of a right-hand side). They reach :func:`_integrate` as literal arguments, which numba
     compiles once per value: each pair gets an integrator of its own, its right-hand side
@@ -536,8 +534,12 @@ def _kernels(air_code: int, drag_code: int):
         summary = _summarise(event_times, states, counts[3], axes, omega, numerics[4])
         return summary, counts, weather, axes, step_times, steps
 
-    fly.__qualname__ = f"fly_air{air_code}_drag{drag_code}"  # numba names its cache file so
-    return jit(fly)
+    def rows(times_s, step_times, steps, weather, axes, dynamics):
+        return _rows(times_s, step_times, steps, weather, axes, air_code, drag_code, dynamics)
+
+    for kernel in (fly, rows):  # numba names a cache file after the function
+        kernel.__qualname__ = f"{kernel.__name__}_air{air_code}_drag{drag_code}"
+    return jit(fly), jit(rows)
 
 
 def _numerics(rtol, max_time_s):
@@ -629,7 +631,7 @@ def _fly(batch: _Batch, max_time_s: float, rtol: float, record: bool, end=None, 
     """The compiled flights of ``batch`` to the site's altitude, or to ``end`` (m) rising where
     ``rising`` (one of each, or arrays (n,)), each stopped at the ground if it never gets
     there; FloatingPointError if one cannot be integrated."""
-    fly = _kernels(*batch.codes)
+    fly, _ = _kernels(*batch.codes)
     numerics = (
         np.array(batch.site_m if end is None else end, dtype=float, ndmin=1),
         np.where(rising, -1.0, 1.0).astype(float).reshape(-1),
@@ -693,7 +695,11 @@ def fly_3dof(
     rtol, max_time_s = _numerics(rtol, max_time_s)
     batch = _batch(launches)
     count = batch.columns.shape[1]
-    ends, rising = _ends(batch.site_m if end_altitude_m is None else end_altitude_m, rising, count)
+    if end_altitude_m is None and rising is False:  # to the ground: the site is validated
+        ends, rising = np.array([batch.site_m]), _FALLING
+    else:
+        end = batch.site_m if end_altitude_m is None else end_altitude_m
+        ends, rising = _ends(end, rising, count)
     flights = _flights(*_fly(batch, max_time_s, rtol, record=False, end=ends, rising=rising)[:2])
     grounded = np.flatnonzero(flights.stop_reason == "ground_before_end")
     if grounded.size:
@@ -740,6 +746,8 @@ def _flights(summary: np.ndarray, counts: np.ndarray) -> Flights:
 
 
 _STOP_REASONS = np.asarray(STOP_REASONS)
+_FALLING = np.zeros(1, dtype=bool)
+_FALLING.flags.writeable = False
 
 
 class Layings:
@@ -931,14 +939,8 @@ def simulate_3dof(
     impact = summary[7, 0] == _AT_END  # the site's altitude: every flight not cut off gets there
     end_t = summary[3, 0] if impact else step_times[-1]
     times = output_times(end_t, step)
-    rows = _rows(
-        times,
-        step_times,
-        steps,
-        np.ascontiguousarray(weather[:, 0]),
-        axes,
-        *batch.codes,
-        batch.dynamics,
+    rows = _kernels(*batch.codes)[1](
+        times, step_times, steps, np.ascontiguousarray(weather[:, 0]), axes, batch.dynamics
     )
     apogee_t = summary[0, 0]
     return describe(
