@@ -17,7 +17,7 @@ from harp_analysis.foundation.validation import ModelValidityWarning
 from harp_analysis.models import trajectory
 from harp_analysis.models.atmosphere import two_segment_speed_of_sound
 from harp_analysis.models.drag import BASELINE_CONE, M829, TabulatedDragLaw, get_drag_law
-from harp_analysis.models.launch import Launch
+from harp_analysis.models.launch import Launch, baseline_chapter_4
 from harp_analysis.models.projectiles import BASELINE, HP, Projectile, get_projectile
 
 #: Chapter 4 B's baseline cone at 2157 m/s and 45 deg, no wind, two-segment air.
@@ -575,3 +575,15 @@ def test_an_end_altitude_below_any_ground_is_refused_by_name():
         threedof.fly_3dof(BASELINE_45, end_altitude_m=-150e3)
     with pytest.raises(ValueError, match="end_altitude_m"):
         threedof.fly_3dof([BASELINE_45, BASELINE_45], end_altitude_m=[0.0, -1e3])
+
+
+def test_a_step_cut_at_the_density_jump_carries_the_flight_across():
+    """The two-segment air's density jumps by 0.05 % at 10.769 km. A step cut short of it is
+    carried across, so the next flies the far side's formulas from its first stage: the
+    baseline cone at 45 deg takes 484 evaluations, as the benchmark's lean reference does
+    (one layer per step, steps cut on the jump). Starting the next step on the near side cost
+    686: its first stage's O(h) error was rejected away, and steps of microseconds grew back."""
+    flight = threedof.fly_3dof(baseline_chapter_4(45.0))
+    assert flight.rhs_evaluations[0] <= 500
+    steps = threedof.simulate_3dof(baseline_chapter_4(45.0)).attrs["steps"]
+    assert steps <= 35  # 47 when steps of microseconds grew back twice
