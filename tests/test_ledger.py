@@ -7,9 +7,11 @@ from difflib import SequenceMatcher
 import pytest
 
 from harp_analysis.analyses import comparisons, effort, mks_improvement, rotating
-from harp_analysis.analyses.claims import chapter4
+from harp_analysis.analyses.claims import chapter1, chapter4
 from harp_analysis.analyses.harp import apogees, rounds
+from harp_analysis.engines import catalogue
 from harp_analysis.foundation import paths
+from harp_analysis.models.launch import HP_CHAPTER_2
 from harp_analysis.reporting import gallery, ledger, registry
 
 CLAIMS = ledger.load_claims()
@@ -467,6 +469,17 @@ def _broad(measure: str, statistic: str = "rms", **subset) -> float:
     return mks_improvement.broad_improvement(measure, statistic, **subset).ratio
 
 
+def _operations(count: float) -> str:
+    """An operation count as the explanations write it: 1.6e5."""
+    mantissa, exponent = f"{count:.1e}".split("e")
+    return f"{mantissa}e{int(exponent)}"
+
+
+def _mlt_times(segment_length_m: float) -> str:
+    """MLT's operations over the 3DOF's, as the explanations write it: 3.9 times."""
+    return f"{10 ** chapter1.mlt_over_3dof_orders(segment_length_m):.1f} times"
+
+
 _TYPED += [
     (
         "ch7c.better_decay_improves.turning",
@@ -492,6 +505,46 @@ _TYPED += [
         "ch2.3dof_more_efficient_than_6dof",
         "about 70 times",
         lambda: f"about {10 ** effort.orders_of_magnitude(method='6DOF', than='3DOF'):.0f} times",
+    ),
+    (
+        "ch4.effort.3dof",
+        "1.6e5 operations for the adaptive 3DOF to impact against 119: 856 evaluations",
+        lambda: (
+            "{} operations for the adaptive 3DOF to impact against {:.0f}: {:,} evaluations".format(
+                _operations(effort.effort_table().flops["3DOF"]),
+                effort.effort_table().flops["MKS (3 terms)"],
+                catalogue.get_engine("3dof").fly(HP_CHAPTER_2).attrs["rhs_evaluations"],
+            )
+        ),
+    ),
+    (
+        "ch1.mlt_cost_vs_point_mass.500m",
+        "15.4 times the adaptive 3DOF's 1.6e5 (10^1.19); with 1 km 7.7 times (10^0.89), "
+        "with 2 km 3.9 times (10^0.59",
+        lambda: (
+            "{} times the adaptive 3DOF's {} (10^{:.2f}); with 1 km {} (10^{:.2f}), "
+            "with 2 km {} (10^{:.2f}".format(
+                _mlt_times(500.0).removesuffix(" times"),
+                _operations(effort.effort_table().flops["3DOF"]),
+                chapter1.mlt_over_3dof_orders(500.0),
+                _mlt_times(1000.0),
+                chapter1.mlt_over_3dof_orders(1000.0),
+                _mlt_times(2000.0),
+                chapter1.mlt_over_3dof_orders(2000.0),
+            )
+        ),
+    ),
+    (
+        "ch1.mlt_cost_vs_point_mass.2km",
+        "10^0.59: 6.3e5 operations for MLT against the 3DOF's 1.6e5, 3.9 times as many",
+        lambda: "10^{:.2f}: {} operations for MLT against the 3DOF's {}, {} as many".format(
+            chapter1.mlt_over_3dof_orders(2000.0),
+            _operations(
+                10 ** chapter1.mlt_over_3dof_orders(2000.0) * effort.effort_table().flops["3DOF"]
+            ),
+            _operations(effort.effort_table().flops["3DOF"]),
+            _mlt_times(2000.0),
+        ),
     ),
     (
         "ch4.reentry_speed_drop.6dof",
