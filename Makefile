@@ -85,6 +85,8 @@ check-docs: docs
 	HARP_ANALYSIS_REQUIRE_BROWSER=1 HARP_ANALYSIS_DOCS_SITE="$(CURDIR)/$(DOCS)/html" \
 		$(BIN)/python -m pytest -q -p no:cacheprovider tests/browser/test_docs_site.py
 
+# Every engine against its reference, then the cold compile (a minute) and a fresh clone's CI
+# (about ten minutes): the budgets of issue 36, each printed against its target.
 benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_atmosphere.py
 	$(BIN)/python benchmarks/bench_threedof.py
@@ -97,6 +99,7 @@ benchmark: $(KERNELS)
 	$(BIN)/python benchmarks/bench_mks_improved.py
 	$(BIN)/python benchmarks/bench_calibrated_mks.py
 	$(BIN)/python benchmarks/cold_compile.py
+	$(BIN)/python benchmarks/fresh_clone_ci.py
 
 clean-venv:
 	rm -rf $(VENV)
