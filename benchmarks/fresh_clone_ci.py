@@ -6,7 +6,8 @@ the README's test command, then the documentation site built and opened in the b
 user's kernel cache and pip's cache are used as CI finds them on this machine: the kernels of
 sources compiled before are loaded, not compiled (``benchmarks/cold_compile.py`` measures
 that), and the environment is installed from pip's cache. Uncommitted changes are not in the
-clone. Printed: the wall time against the target of 6 minutes, and the CPU seconds.
+clone. Printed: the wall time against the target of 6 minutes, and the CPU seconds; the run's
+output is kept in ``build/fresh_clone_ci.log``.
 
 Not a ``bench_*.py``: the documentation site runs those on every build, and this one takes
 about ten minutes of both cores; ``make benchmark`` runs it last.
@@ -24,6 +25,7 @@ from measure import verdict
 
 TARGET_S = 360.0
 ROOT = Path(__file__).resolve().parents[1]
+LOG = ROOT / "build" / "fresh_clone_ci.log"
 
 
 def _git(*arguments: str) -> str:
@@ -44,17 +46,21 @@ def main() -> None:
         subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         start = time.perf_counter()
-        run = subprocess.run([str(clone / ".ci" / "run")], cwd=clone, capture_output=True)
+        LOG.parent.mkdir(exist_ok=True)
+        with LOG.open("wb") as log:
+            run = subprocess.run(
+                [str(clone / ".ci" / "run")], cwd=clone, stdout=log, stderr=subprocess.STDOUT
+            )
         wall = time.perf_counter() - start
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
     finally:
         shutil.rmtree(clone, ignore_errors=True)
     if run.returncode:
-        sys.stdout.buffer.write(run.stdout[-4000:] + run.stderr[-4000:])
-        raise SystemExit(f"fresh clone's CI failed on {commit} (exit {run.returncode})")
+        sys.stdout.buffer.write(LOG.read_bytes()[-4000:])
+        raise SystemExit(f"fresh clone's CI failed on {commit} (exit {run.returncode}): {LOG}")
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     print(
-        f"fresh clone's CI: .ci/run on a clone of {commit}, {wall / 60:.0f} min {wall % 60:.0f} s "
+        f"fresh clone's CI: .ci/run on a clone of {commit}, {wall // 60:.0f} min {wall % 60:.0f} s "
         f"({cpu:.0f} s of CPU on {os.cpu_count()} cores); target {TARGET_S / 60:.0f} min: "
         f"{verdict(wall, TARGET_S)}"
     )
