@@ -58,9 +58,10 @@ def main() -> None:
     if run.returncode:
         sys.stdout.buffer.write(LOG.read_bytes()[-4000:])
         raise SystemExit(f"fresh clone's CI failed on {commit} (exit {run.returncode}): {LOG}")
+    minutes, seconds = divmod(round(wall), 60)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     print(
-        f"fresh clone's CI: .ci/run on a clone of {commit}, {wall // 60:.0f} min {wall % 60:.0f} s "
+        f"fresh clone's CI: .ci/run on a clone of {commit}, {minutes} min {seconds} s "
         f"({cpu:.0f} s of CPU on {os.cpu_count()} cores); target {TARGET_S / 60:.0f} min: "
         f"{verdict(wall, TARGET_S)}"
     )

@@ -219,13 +219,15 @@ def test_dissertation_model_takes_each_angle_where_it_says():
     """beta at the gun's elevation, tau and eq 5.8's climb at the corrected one, (Vrel/V)^2 of
     the launch velocity (V_tangent included) by eq 5.3."""
     launch = _launch(1800.0, 85.0, 109.0, 13.0, model=eci.DISSERTATION)
-    gun = 85 * DEG
-    assert launch.beta == pytest.approx(mks.decay_factor_beta(2.7e-3, 1.225, 1.0, 84.0, gun))
-    assert launch.tau == pytest.approx(mks.decay_rate_tau(launch.corrected_elevation_rad))
-    assert launch.tangent_speed_m_s == pytest.approx(
-        eci.tangent_speed(
-            2.7e-3, 1.225, 84.0, launch.misalignment_rad, 1800.0, launch.corrected_elevation_rad
-        )
+    gun, corrected = 85 * DEG, launch.corrected_elevation_rad
+    # written out, not read from the package: a slip in eqs 3.22, 3.27 or 5.8 fails here
+    k, radius = 1.17e-4, 6_378_000.0  # the text's 0.117 /km; Appendix A's R
+    drag = 2.7e-3 * 1.225  # Cd A rho0
+    assert launch.beta == pytest.approx(drag / (2 * k * 84.0 * math.sin(gun)), rel=1e-13)  # 3.22
+    assert launch.tau == pytest.approx(k * radius * math.tan(corrected), rel=1e-13)  # eq 3.27
+    assert launch.tangent_speed_m_s == pytest.approx(  # eq 5.8
+        drag * math.sin(launch.misalignment_rad) * 1800.0 / (2 * 84.0 * k * math.sin(corrected)),
+        rel=1e-13,
     )
     assert launch.speed_ratio_squared == pytest.approx(
         eci.speed_ratio_squared_eq_5_3(launch.velocity_m_s, 13 * DEG), rel=1e-12

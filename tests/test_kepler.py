@@ -11,7 +11,13 @@ from scipy.integrate import solve_ivp
 from harp_analysis.engines import kepler
 from harp_analysis.foundation import earth
 
-R, GM = earth.RADIUS_M, earth.GM_M3_S2
+# Appendix A's Earth, written out (not read from the package, so that a slip in its constants
+# fails here): R = 6378 km, GM = 398600.4418 km^3/s^2.
+R, GM = 6_378_000.0, 3.986004418e14
+
+
+def test_the_package_earth_is_appendix_a():
+    assert (earth.RADIUS_M, earth.GM_M3_S2) == (R, GM)
 
 
 @pytest.mark.parametrize("range_km, elevation_deg", [(43.0, 34.0), (200.0, 50.0), (900.0, 70.0)])

@@ -571,10 +571,6 @@ def test_numbers_typed_into_explanations_hold(row, typed, compute):
 
 
 # --- ties by meaning: every row's paragraph in the text, and the figures it cites -------------
-DISSERTATION = paths.ROOT.parent / "shared" / "dissertation" / "000_5344a0ab06f4edea.txt"
-needs_text = pytest.mark.skipif(
-    not DISSERTATION.exists(), reason="the dissertation's text (../shared) is not beside the repo"
-)
 #: a statement that shares this many words in a row with a paragraph quotes it
 STATEMENT_RUN = 8
 #: the text's slips in citing figures (registry/no_data.md), by the words around them
@@ -628,10 +624,6 @@ def test_a_paragraph_s_citations_are_read(paragraph, figures):
     assert _figures_cited(paragraph) == figures
 
 
-def _paragraphs() -> list[str]:
-    return DISSERTATION.read_text().split("\n")
-
-
 def _located(claim, paragraphs) -> list[int]:
     """Indices of the paragraphs ``claim`` comes from: those holding its quote, else those
     sharing the longest run (at least STATEMENT_RUN words) with its statement."""
@@ -652,19 +644,17 @@ def _located(claim, paragraphs) -> list[int]:
 
 
 @pytest.fixture(scope="module")
-def located():
-    paragraphs = _paragraphs()
+def located(dissertation_text):
+    paragraphs = dissertation_text.split("\n")
     return paragraphs, {claim.id: _located(claim, paragraphs) for claim in CLAIMS}
 
 
-@needs_text
 def test_every_row_locates_the_text_it_scores(located):
     _, where = located
     lost = [claim_id for claim_id, indices in where.items() if not indices]
     assert not lost, f"rows whose paragraph is not found (add a quote): {lost}"
 
 
-@needs_text
 def test_every_row_is_tied_to_the_figures_its_paragraph_cites(located):
     """For each paragraph that some row comes from, every figure it cites is tied to every row
     from it: a row drawn from the prose about a figure answers to that figure's status."""

@@ -11,7 +11,6 @@ from harp_analysis.reporting import gallery, registry
 ENTRIES = registry.load_registry()
 EXTENSIONS = [entry for entry in ENTRIES if entry.extension]
 REPOSITORY_FIGURES = paths.COMMITTED_FIGURES_DIR
-DISSERTATION = paths.ROOT.parent / "shared" / "dissertation" / "000_5344a0ab06f4edea.txt"
 
 
 def test_every_figure_and_table_is_registered():
@@ -24,9 +23,8 @@ def test_every_figure_and_table_is_registered():
     assert {entry.number for entry in ENTRIES if not entry.extension} == expected
 
 
-@pytest.mark.skipif(not DISSERTATION.exists(), reason="shared/dissertation not beside the repo")
-def test_registry_titles_are_the_captions():
-    text = DISSERTATION.read_text()
+def test_registry_titles_are_the_captions(dissertation_text):
+    text = dissertation_text
     for entry in ENTRIES:
         if entry.kind == "figure" and not entry.extension:
             first_words = " ".join(entry.title.split()[:4])
