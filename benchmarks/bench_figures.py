@@ -26,7 +26,7 @@ import numpy as np
 from measure import interleaved_best
 
 from harp_analysis.foundation.paths import write_atomically
-from harp_analysis.reporting import plotting
+from harp_analysis.reporting import plotting, save_shortcuts
 
 matplotlib.use("agg")
 
@@ -88,7 +88,7 @@ def main(smoke: bool = False) -> None:
             reference_save(fig, reference_png)
 
             def afresh():
-                plotting._subset_font.cache_clear()
+                save_shortcuts.subset_font.cache_clear()
                 plotting.save_figure(fig, NUMBER)
 
             times = interleaved_best(
@@ -116,11 +116,12 @@ def main(smoke: bool = False) -> None:
             else:
                 os.environ["HARP_ANALYSIS_FIGURES_DIR"] = previous
     plt.close(fig)
-    lean = matplotlib.__version__ == plotting._CHECKED_MATPLOTLIB
+    lean = save_shortcuts.enabled()
     print(
         f"Saving a {plotting.FULL_WIDTH_IN} in wide line plot (PNG {plotting.DPI} dpi + PDF, "
         f"TrueType fonts), best of {1 if smoke else 7} interleaved rounds; matplotlib "
-        f"{matplotlib.__version__}, lean subsetting {'on' if lean else 'OFF (unchecked release)'}"
+        f"{matplotlib.__version__}, lean subsetting "
+        f"{'on' if lean else 'OFF (switched off, or an unchecked release)'}"
     )
     reference = times["reference: fig.savefig PNG, then PDF"]
     print(f"{'case':<40} {'per save (s)':>13} {'vs reference':>13}")

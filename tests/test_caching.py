@@ -49,7 +49,7 @@ IMMUTABLE_RESULTS = {
 NOT_YET_COPIES = {
     "models.atmosphere._standard_table": "a tuple of numpy arrays (private, read by the kernels)",
     "engines.mks._gauss_legendre": "a tuple of numpy arrays (nodes and weights)",
-    "reporting.plotting._subset_font": "bytes and a dict of glyph indices",
+    "reporting.save_shortcuts.subset_font": "bytes and a dict of glyph indices",
     "models.rigid_body._model": "the RigidBodyModel the 6DOF and MLT flights of a projectile share",
     "engines.threedof._shared": "numpy arrays (the atmosphere's table, breakpoints)",
 }

@@ -18,7 +18,7 @@ from matplotlib.backends import _backend_pdf_ps
 from matplotlib.mathtext import MathTextParser
 
 from harp_analysis.foundation import paths
-from harp_analysis.reporting import plotting
+from harp_analysis.reporting import plotting, save_shortcuts
 
 
 @pytest.fixture
@@ -92,7 +92,7 @@ def test_save_figure_pdf_is_deterministic_whatever_the_subset_cache(figures_dir)
     png = plotting.save_figure(fig, "2.1")
     pdf = png.with_suffix(".pdf")
     first = _digest(png), _digest(pdf)
-    plotting._subset_font.cache_clear()  # the fonts subset afresh, then taken from the cache
+    save_shortcuts.subset_font.cache_clear()  # the fonts subset afresh, then taken from the cache
     for _ in range(2):
         plotting.save_figure(fig, "2.1")
         assert (_digest(png), _digest(pdf)) == first
@@ -126,8 +126,8 @@ def test_lean_subset_embeds_the_glyphs_matplotlib_would():
     path = font_manager.findfont("DejaVu Sans")
     font = font_manager.get_font(path)
     glyphs = {font.get_char_index(ord(c)) for c in "Range (km) −0.5 fiAV°"}
-    data = plotting._subset_font(str(path), path.face_index, frozenset(glyphs))[0]
-    with plotting._lean_glyphs_subset(path, glyphs) as lean:
+    data = save_shortcuts.subset_font(str(path), path.face_index, frozenset(glyphs))[0]
+    with save_shortcuts.lean_glyphs_subset(path, glyphs) as lean:
         # what matplotlib embeds is the cached font, byte for byte (no time stamp added)
         assert _backend_pdf_ps.font_as_file(lean.font).getvalue() == data
         with _backend_pdf_ps.get_glyphs_subset(path, glyphs) as full:
@@ -146,32 +146,39 @@ def _hooks():
 def test_shortcuts_are_checked_against_the_pinned_matplotlib():
     """The private hooks are used with the matplotlib they were read against, and no other."""
     pinned = re.search(r"^matplotlib==(\S+)$", (paths.ROOT / "environment.txt").read_text(), re.M)
-    assert pinned and pinned[1] == plotting._CHECKED_MATPLOTLIB == matplotlib.__version__, (
+    assert pinned and pinned[1] == save_shortcuts.CHECKED_MATPLOTLIB == matplotlib.__version__, (
         "matplotlib changed: re-read backend_pdf's embedTTFType42, "
         "_backend_pdf_ps.get_glyphs_subset and MathTextParser.parse, then update "
-        "plotting._CHECKED_MATPLOTLIB"
+        "save_shortcuts.CHECKED_MATPLOTLIB"
     )
     original = _hooks()
     assert list(inspect.signature(original[0]).parameters) == ["fontfile", "glyphs"]
     assert list(inspect.signature(original[1]).parameters) == [
         *("self", "s", "dpi", "prop", "antialiased", "load_glyph_flags")
     ]
-    with plotting._shortcuts():
-        assert _backend_pdf_ps.get_glyphs_subset is plotting._lean_glyphs_subset
+    with save_shortcuts.shortcuts():
+        assert _backend_pdf_ps.get_glyphs_subset is save_shortcuts.lean_glyphs_subset
         assert vars(MathTextParser)["_parse_cached"] is not original[1]
     assert _hooks() == original
 
 
-def test_shortcuts_change_no_pixel_and_no_drawing(figures_dir, monkeypatch):
-    """Saved with the shortcuts and with matplotlib's own ways (as under another matplotlib):
-    the same PNG, the same PDF page; only the embedded fonts are leaner."""
+@pytest.mark.parametrize("turned_off", ["by the switch", "by another matplotlib"])
+def test_shortcuts_change_no_pixel_and_no_drawing(figures_dir, monkeypatch, turned_off):
+    """Saved with matplotlib's own ways (the shortcuts switched off, or under another
+    matplotlib) and with the shortcuts: the same PNG, the same PDF page; only the embedded
+    fonts are leaner."""
     fig = _figure()
-    saved = {}
-    for version in ("99.0", matplotlib.__version__):
-        monkeypatch.setattr(matplotlib, "__version__", version)
-        png = plotting.save_figure(fig, "2.1")
-        saved[version] = png.read_bytes(), png.with_suffix(".pdf").read_bytes()
-    (own_png, own_pdf), (png, pdf) = saved.values()
+    saved = []
+    for on in (False, True):
+        with monkeypatch.context() as patch:
+            if not on and turned_off == "by the switch":
+                patch.setenv(save_shortcuts.SWITCH, "0")
+            elif not on:
+                patch.setattr(matplotlib, "__version__", "99.0")
+            assert save_shortcuts.enabled() is on
+            png = plotting.save_figure(fig, "2.1")
+            saved.append((png.read_bytes(), png.with_suffix(".pdf").read_bytes()))
+    (own_png, own_pdf), (png, pdf) = saved
     assert png == own_png
     assert _page(pdf) == _page(own_pdf)
     assert all("GSUB" in font for font in _embedded_fonts(own_pdf))

@@ -22,35 +22,29 @@ finds nothing wrong with it (labels over labels or over curves, data clipped sil
 text off the page, markers cut by the axes' edge), with no software or time stamps, through a
 temporary file renamed into place: an interrupted run never leaves a truncated figure. The
 PDF's fonts are embedded as TrueType (Type 42), subset without the tables a PDF never reads, and
-mathtext is laid out once per save (:func:`_shortcuts`): a save takes about 70 % of the time
-matplotlib's own ways take (benchmarks/bench_figures.py).
+mathtext is laid out once per save (:mod:`.save_shortcuts`, which says how to turn both off): a
+save takes about 70 % of the time matplotlib's own ways take (benchmarks/bench_figures.py).
 """
 
 from __future__ import annotations
 
 import contextlib
 import functools
-import io
 from collections.abc import Iterator
 from pathlib import Path
-from types import SimpleNamespace
 from typing import Any
 
-import matplotlib
 import matplotlib.pyplot as plt
 import numpy as np
-from fontTools import subset
-from fontTools.ttLib import TTFont
 from matplotlib import lines as mlines
-from matplotlib.backends import _backend_pdf_ps
 from matplotlib.figure import Figure
 from matplotlib.markers import MarkerStyle
-from matplotlib.mathtext import MathTextParser
 from matplotlib.path import Path as MplPath
 from matplotlib.text import Text
 from matplotlib.transforms import Bbox, IdentityTransform
 
 from ..foundation.paths import write_atomically
+from . import save_shortcuts
 from .registry import figure_file
 
 __all__ = [
@@ -463,86 +457,6 @@ _NO_METADATA = {
 }
 
 
-# Saving spends its time in two places that matplotlib offers no setting for; save_figure takes
-# a shorter way through each, by two of its private functions (:func:`_shortcuts`). (Writing the
-# PDF in a thread would gain nothing: the engines' compiled kernels hold the GIL.)
-#
-# Fonts. Embedding a TrueType (Type 42) font, the PDF backend has fontTools subset it from the
-# whole file with its layout tables (GSUB, GPOS, GDEF, MATH, kern) and glyph names: ~50 ms a
-# font, four fonts a figure, nearly half of saving it. A PDF reads none of them: matplotlib has
-# laid the text out with the full font, the page places every glyph, a CIDToGIDMap finds it by
-# index and the ToUnicode map gives its text. Subset without them, a font takes ~19 ms, and the
-# glyph sets that recur (tick digits, the minus sign, mathtext's italics) are subset once per
-# process. The outlines, advances and hinting embedded are the same (tests/test_figures.py
-# compares them). The hook: `_backend_pdf_ps.get_glyphs_subset(fontpath, glyph indices)`, which
-# embedTTFType42 enters as a context manager, then serialises its `.font` (a TTFont) and reads
-# its `.glyph_index_map` (old glyph index -> the subset's).
-#
-# Mathtext. Each renderer has a MathTextParser of its own, whose cache is keyed by the parser,
-# so each of the four drawings of a save (tight box and image, for the PNG and the PDF) lays
-# every mathtext string out afresh, a few ms each. The layout depends on the parser only by its
-# output type (raster or vector); within one save (the rcParams fixed) each is laid out once
-# per output type, size and font. The hook: `MathTextParser._parse_cached(parser, s, dpi, prop,
-# antialiased, load_glyph_flags)`, the cached part of `MathTextParser.parse`.
-#
-# Both hooks are in place only while save_figure writes, and only under the matplotlib release
-# they were read against, environment.txt's pin (a test holds the two equal); under any other,
-# matplotlib's own ways run: slower, as correct.
-_CHECKED_MATPLOTLIB = "3.11.2"
-_NOT_READ_BY_PDF = ["GSUB", "GPOS", "GDEF", "MATH", "kern", "FFTM"]  # FFTM: FontForge's stamp
-
-
-@functools.lru_cache(maxsize=256)
-def _subset_font(path: str, face_index: int, glyphs: frozenset[int]) -> tuple[bytes, dict]:
-    """The TrueType file of font ``path`` cut to ``glyphs`` (and .notdef), and the map of their
-    glyph indices into it."""
-    options = subset.Options(glyph_names=False, recommended_glyphs=True, font_number=face_index)
-    options.drop_tables += _NOT_READ_BY_PDF
-    with subset.load_font(path, options) as font:
-        subsetter = subset.Subsetter(options=options)
-        subsetter.populate(gids=glyphs)
-        subsetter.subset(font)
-        data = io.BytesIO()
-        font.save(data, reorderTables=False)
-    return data.getvalue(), subsetter.glyph_index_map
-
-
-@contextlib.contextmanager
-def _lean_glyphs_subset(fontfile, glyphs):
-    """:func:`_subset_font` in the form of matplotlib's ``get_glyphs_subset``; a fresh TTFont
-    each time, as matplotlib closes it, which re-serialises to the same bytes (left to its
-    defaults, fontTools would stamp the time of saving into the font's head table)."""
-    data, glyph_index_map = _subset_font(str(fontfile), fontfile.face_index, frozenset(glyphs))
-    with TTFont(io.BytesIO(data), recalcBBoxes=False, recalcTimestamp=False) as font:
-        yield SimpleNamespace(font=font, glyph_index_map=glyph_index_map)
-
-
-@contextlib.contextmanager
-def _shortcuts():
-    """Inside, PDFs embed their fonts through :func:`_lean_glyphs_subset` and each mathtext
-    layout is shared by every renderer of its output type (see the comment above)."""
-    if matplotlib.__version__ != _CHECKED_MATPLOTLIB:
-        yield
-        return
-    subset_glyphs = _backend_pdf_ps.get_glyphs_subset
-    parse = vars(MathTextParser)["_parse_cached"]
-    parsed: dict[tuple, Any] = {}
-
-    def parse_once(parser, *arguments):
-        key = (parser._output_type, *arguments)
-        if key not in parsed:
-            parsed[key] = parse(parser, *arguments)
-        return parsed[key]
-
-    _backend_pdf_ps.get_glyphs_subset = _lean_glyphs_subset
-    MathTextParser._parse_cached = parse_once
-    try:
-        yield
-    finally:
-        _backend_pdf_ps.get_glyphs_subset = subset_glyphs
-        MathTextParser._parse_cached = parse
-
-
 def save_figure(fig, number: str) -> Path:
     """Save ``fig`` as figure ``number`` (e.g. ``"2.1"`` -> ``figures/fig_2_1.png`` and
     ``fig_2_1.pdf``); returns the PNG's path.
@@ -559,7 +473,7 @@ def save_figure(fig, number: str) -> Path:
     if defects:
         raise ValueError(f"figure {number} is not fit to print: " + "; ".join(defects))
     house_style = plt.rc_context(HOUSE_STYLE)  # type: ignore[arg-type]  # keys checked at run time
-    with house_style, _shortcuts():
+    with house_style, save_shortcuts.shortcuts():
         for path, backend in ((png, "agg"), (png.with_suffix(".pdf"), "pdf")):
             write_atomically(
                 path,
