@@ -11,14 +11,11 @@ minute of both cores; ``make benchmark`` runs it last.
 """
 
 import os
-import resource
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
-from measure import verdict
+from measure import run_timed, verdict
 
 TARGET_S, AIM_S = 60.0, 30.0
 ROOT = Path(__file__).resolve().parents[1]
@@ -32,13 +29,8 @@ def main() -> None:
         env = dict(os.environ, HARP_ANALYSIS_KERNEL_CACHE=empty)
         # -B remakes the kernel step; -o keeps the installed environment as it is
         command = ["make", "--no-print-directory", "-B", "-o", ".venv/.installed", ".venv/.kernels"]
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        start = time.perf_counter()
-        subprocess.run(command, cwd=ROOT, env=env, check=True, capture_output=True)
-        wall = time.perf_counter() - start
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        _, wall, cpu = run_timed(command, cwd=ROOT, env=env, check=True, capture_output=True)
         kernels = sum(1 for _ in Path(empty).rglob("*.nbi"))
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     print(
         f"cold compile: make's kernel step into an empty cache, {kernels} compiled functions, "
         f"{wall:.0f} s ({cpu:.0f} s of CPU on {os.cpu_count()} cores); target {TARGET_S:.0f} s: "

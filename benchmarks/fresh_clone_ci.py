@@ -14,14 +14,12 @@ about ten minutes of both cores; ``make benchmark`` runs it last.
 """
 
 import os
-import resource
 import shutil
 import subprocess
 import sys
-import time
 from pathlib import Path
 
-from measure import verdict
+from measure import run_timed, verdict
 
 TARGET_S = 360.0
 ROOT = Path(__file__).resolve().parents[1]
@@ -44,22 +42,17 @@ def main() -> None:
     clone = ROOT.parent / f"{ROOT.name}-ci-{os.getpid()}"
     try:
         subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        start = time.perf_counter()
         LOG.parent.mkdir(exist_ok=True)
         with LOG.open("wb") as log:
-            run = subprocess.run(
+            run, wall, cpu = run_timed(
                 [str(clone / ".ci" / "run")], cwd=clone, stdout=log, stderr=subprocess.STDOUT
             )
-        wall = time.perf_counter() - start
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
     finally:
         shutil.rmtree(clone, ignore_errors=True)
     if run.returncode:
         sys.stdout.buffer.write(LOG.read_bytes()[-4000:])
         raise SystemExit(f"fresh clone's CI failed on {commit} (exit {run.returncode}): {LOG}")
     minutes, seconds = divmod(round(wall), 60)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     print(
         f"fresh clone's CI: .ci/run on a clone of {commit}, {minutes} min {seconds} s "
         f"({cpu:.0f} s of CPU on {os.cpu_count()} cores); target {TARGET_S / 60:.0f} min: "

@@ -1,9 +1,11 @@
 """What every benchmark measures with: best times (interleaved, so a busy machine slows every
-case alike), peak memory, a target's verdict, the cold start of a fresh process, and the check
-that a reference computes what the package does (every benchmark's smoke mode asserts it)."""
+case alike), peak memory, a target's verdict, the cold start of a fresh process, the wall and
+CPU time of a command (:func:`run_timed`), and the check that a reference computes what the
+package does (every benchmark's smoke mode asserts it)."""
 
 import math
 import os
+import resource
 import subprocess
 import sys
 import tempfile
@@ -43,6 +45,18 @@ def peak_memory_bytes(function) -> int:
 
 def verdict(value: float, target: float) -> str:
     return "met" if value <= target else f"missed by {value / target:.2f}x"
+
+
+def run_timed(command: list[str], **keywords) -> tuple[subprocess.CompletedProcess, float, float]:
+    """``subprocess.run(command, **keywords)``, its wall seconds, and the CPU seconds of every
+    process it ran (user and system)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    completed = subprocess.run(command, **keywords)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return completed, wall, cpu
 
 
 def cold_start_s(code: str) -> float:
