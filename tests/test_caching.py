@@ -23,9 +23,9 @@ PACKAGE = Path(harp_analysis.__file__).parent
 
 #: Plain caches whose results cannot be edited: module.function -> what it returns.
 IMMUTABLE_RESULTS = {
-    "foundation.compiled._imported_as_of": "a frozenset of paths",
-    "foundation.compiled._digest": "a string",
-    "foundation.compiled._toolchain": "a string",
+    "foundation.kernel_digest._imported_as_of": "a frozenset of paths",
+    "foundation.kernel_digest._digest": "a string",
+    "foundation.kernel_digest._toolchain": "a string",
     "reporting.explorer._typical_martlet_mass_kg": "a float",
     "analyses.fire_control.costs.raid_against_3dof_intercept": "a frozen RaidComparison",
     "analyses.fire_control.model_comparison.calibrated_fire_control": (

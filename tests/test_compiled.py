@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 from harp_analysis.analyses import effort
 from harp_analysis.engines import threedof
-from harp_analysis.foundation import compiled
+from harp_analysis.foundation import compiled, kernel_digest
 from harp_analysis.models import atmosphere, drag
 from harp_analysis.models.launch import HP_CHAPTER_2, baseline_chapter_4
 
@@ -46,7 +46,7 @@ def test_select_is_where_on_arrays_and_a_choice_on_numbers():
 
 def test_the_cache_folder_follows_every_formula_a_kernel_reaches():
     """numba alone would keep a kernel compiled against an old formula of another module."""
-    sources = {path.name for path in compiled._sources("harp_analysis.engines.threedof")}
+    sources = {path.name for path in kernel_digest._sources("harp_analysis.engines.threedof")}
     assert {"threedof.py", "integrator.py", "atmosphere.py", "drag.py", "compiled.py"} <= sources
     assert "effort.py" not in sources  # an analysis the engine does not reach
 
@@ -81,7 +81,7 @@ def test_a_module_imported_for_a_constant_counts_in_the_digest():
 
     from harp_analysis.models import trajectory
 
-    assert "earth.py" in {path.name for path in compiled._imported(Path(trajectory.__file__))}
+    assert "earth.py" in {path.name for path in kernel_digest._imported(Path(trajectory.__file__))}
 
 
 def test_unknown_model_numbers_are_refused_in_compiled_code():
@@ -282,6 +282,47 @@ def test_a_second_checkout_loads_what_the_first_compiled(tmp_path):
     assert kept() == saved
 
 
+# the Chapter 4 baseline's drag coefficient at Mach 2.25 (a kernel of models.drag, cheap to
+# compile), and how many signatures the package's kernels and the test's loaded and compiled
+DRAG_AND_COUNT = """
+import json
+import kernel_module
+from harp_analysis.models import drag
+code, *tables = drag.BASELINE_CONE.kernel_parameters()
+kernels = [drag.drag_coefficient, kernel_module.polynomial]
+print(json.dumps({"cd": drag.drag_coefficient(code, 2.25, *tables),
+                  "polynomial": kernel_module.polynomial(2.0),
+                  "hits": sum(sum(k.stats.cache_hits.values()) for k in kernels),
+                  "misses": sum(sum(k.stats.cache_misses.values()) for k in kernels)}))
+"""
+
+
+def test_with_the_numba_cache_hooks_off_kernels_compile_in_every_process(tmp_path):
+    """``HARP_ANALYSIS_NUMBA_CACHE=0`` leaves numba's dispatcher as njit makes it: the same
+    numbers (the drag law of eq 4.8 at Mach 2.25, a polynomial against Python's), compiled again
+    by a second process (slower) and nothing written to the kernels' folder."""
+    import json
+    import math
+    import os
+
+    from harp_analysis.foundation import numba_cache
+
+    (tmp_path / "kernel_module.py").write_text(KERNEL_MODULE)
+    cache = tmp_path / "kernels"
+    os.environ[numba_cache.SWITCH] = "0"  # inherited by the fresh interpreters below
+    try:
+        runs = [json.loads(_fresh_python(DRAG_AND_COUNT, cache, tmp_path)) for _ in range(2)]
+    finally:
+        del os.environ[numba_cache.SWITCH]
+    law = 0.077 * math.exp(-0.38 * 2.25) + 0.014  # eq 4.8, written out
+    polynomial = 2.0 + sum(2.0**power / power for power in range(2, 12))
+    for run in runs:
+        assert run["cd"] == pytest.approx(law, rel=1e-12)
+        assert run["polynomial"] == pytest.approx(polynomial, rel=1e-15)
+        assert run["misses"] == 2 and run["hits"] == 0  # each process compiled both
+    assert not cache.exists() or not any(cache.rglob("*.nb*"))
+
+
 def test_the_kernels_folder_follows_the_toolchain_not_where_the_files_are(monkeypatch, tmp_path):
     """The folder's name digests the compiler's versions (another numba, llvmlite, Python or
     CPU compiles afresh); HARP_ANALYSIS_KERNEL_CACHE moves it, else it is the user's."""
@@ -291,24 +332,24 @@ def test_the_kernels_folder_follows_the_toolchain_not_where_the_files_are(monkey
     import numba
     from numba.core.registry import cpu_target
 
-    toolchain = compiled._toolchain()
+    toolchain = kernel_digest._toolchain()
     cpu = cpu_target.target_context.codegen()._get_host_cpu_name()
     for version in (numba.__version__, llvmlite.__version__, sys.version, cpu):
         assert version in toolchain
     monkeypatch.setenv("HARP_ANALYSIS_KERNEL_CACHE", str(tmp_path / "kernels"))
-    folder = compiled.cache_folder("harp_analysis.engines.mks")
+    folder = kernel_digest.cache_folder("harp_analysis.engines.mks")
     assert folder.parent == tmp_path / "kernels"
-    assert compiled.cache_folder("harp_analysis.engines.mks") == folder
-    assert compiled.cache_folder("harp_analysis.engines.flight_grid") != folder
-    monkeypatch.setattr(compiled, "_toolchain", lambda: toolchain + " another numba")
-    assert compiled.cache_folder("harp_analysis.engines.mks") != folder
+    assert kernel_digest.cache_folder("harp_analysis.engines.mks") == folder
+    assert kernel_digest.cache_folder("harp_analysis.engines.flight_grid") != folder
+    monkeypatch.setattr(kernel_digest, "_toolchain", lambda: toolchain + " another numba")
+    assert kernel_digest.cache_folder("harp_analysis.engines.mks") != folder
     monkeypatch.delenv("HARP_ANALYSIS_KERNEL_CACHE")
     monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "user"))
-    assert compiled.cache_root() == tmp_path / "user" / "harp-analysis" / "kernels"
+    assert kernel_digest.cache_root() == tmp_path / "user" / "harp-analysis" / "kernels"
     monkeypatch.delenv("XDG_CACHE_HOME")
     monkeypatch.setenv("HOME", str(tmp_path / "home"))
-    assert compiled.cache_root() == tmp_path / "home" / ".cache" / "harp-analysis" / "kernels"
+    assert kernel_digest.cache_root() == tmp_path / "home" / ".cache" / "harp-analysis" / "kernels"
 
 
 def test_numba_s_debugging_switch_runs_the_same_physics_in_python():
@@ -361,7 +402,7 @@ def test_relative_imports_resolve_from_the_importing_file_s_own_folder(tmp_path)
         "from ..models import drag\nfrom ..models.air import RHO\nfrom . import helper\n"
     )
     (tmp_path / "engines" / "helper.py").write_text("")
-    found = compiled._imported(Path(tmp_path / "engines" / "fly.py"))
+    found = kernel_digest._imported(Path(tmp_path / "engines" / "fly.py"))
     assert found == {
         tmp_path / "models" / "drag.py",
         tmp_path / "models" / "air.py",

@@ -2,7 +2,7 @@
 
 An engine that learns a table from its own flights (:mod:`harp_analysis.engines.calibrated_mks`)
 computes it once per user and version of the physics: the arrays are saved in the user's cache
-folder beside the compiled kernels (:func:`.compiled.cache_folder`, named by a digest of every
+folder beside the compiled kernels (:func:`.kernel_digest.cache_folder`, named by a digest of every
 source file the computing module reaches and of the compiler's versions, so an edit to the
 physics computes afresh, and every checkout of the same sources shares them), under a
 name that is a digest of the key the caller gives (what the table was learned from). Processes
@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 from filelock import FileLock
 
-from .compiled import cache_folder
+from .kernel_digest import cache_folder
 
 __all__ = ["stored_arrays", "store_enabled"]
 
