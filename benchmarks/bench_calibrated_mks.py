@@ -80,7 +80,7 @@ def _accuracy(smoke: bool) -> None:
 def _eci_outputs(launch):
     """The ECI MKS's time of flight, apogee and Earth-fixed impact point: the same outputs as
     the calibrated MKS, its time on the same 65 steps of angular range."""
-    solution = eci.solution_for_launch(launch, warn=False)
+    solution = eci.correction_for_launch(launch).solution(warn=False)
     impact = np.reshape(solution.impact_angle, (-1, 1))
     times = np.reshape(solution.time(impact * np.linspace(0.0, 1.0, 65)), (impact.size, -1))
     correction = eci.correction_for_launch(launch)

@@ -25,7 +25,7 @@ def test_barbados_surface_speed_eq_6_16():
 
 
 def _launch(speed, elevation_deg, bearing_deg, latitude_deg, **kwargs):
-    return eci.launch_correction(
+    return eci.correction_for_arrays(
         speed,
         elevation_deg * DEG,
         bearing_deg * DEG,
@@ -101,7 +101,7 @@ def test_eci_solution_without_rotation_is_the_non_rotating_mks():
     reference = mks.for_launch(launch)
     air = get_atmosphere("two_segment")  # the launch's air at the gun: Cd0's Mach
     cd0 = BASELINE.drag_law(2157.0 / air.speed_of_sound(0.0))
-    solution = eci.eci_solution(
+    solution = eci.correction_for_arrays(
         2157.0,
         45 * DEG,
         1.0,
@@ -110,9 +110,9 @@ def test_eci_solution_without_rotation_is_the_non_rotating_mks():
         mass_kg=BASELINE.mass_kg,
         surface_density_kg_m3=1.225,  # the MKS's air, eq 3.11 (mks.gun_density_kg_m3)
         rotation_rate_rad_s=0.0,
-    )
+    ).solution()
     # the launch's own ECI MKS: its rotation_rate_rad_s is 0 unless the launch says otherwise
-    by_launch = eci.solution_for_launch(launch)
+    by_launch = eci.correction_for_launch(launch).solution()
     for name in ("h_inf", "c1", "c2", "amplitudes", "beta", "tau"):
         assert getattr(solution, name) == pytest.approx(getattr(reference, name), rel=1e-9), name
         assert getattr(by_launch, name) == pytest.approx(getattr(reference, name), rel=1e-9), name
@@ -121,7 +121,7 @@ def test_eci_solution_without_rotation_is_the_non_rotating_mks():
 
 
 @pytest.mark.parametrize("model", ["consistent", "dissertation", "printed_columns"])
-def test_correction_for_launch_is_launch_correction_of_its_fields(model):
+def test_correction_for_launch_is_correction_for_arrays_of_its_fields(model):
     """Barbados, 1800 m/s at 85 deg on bearing 109 deg, the Earth turning: the Launch's speed,
     angles, Cd0 A at its Mach, mass, air at the gun and rotation, nothing else."""
     launch = baseline_chapter_4(
@@ -133,7 +133,7 @@ def test_correction_for_launch_is_launch_correction_of_its_fields(model):
     )
     by_launch = eci.correction_for_launch(launch, model)
     air = get_atmosphere("two_segment")
-    explicit = eci.launch_correction(
+    explicit = eci.correction_for_arrays(
         1800.0,
         85 * DEG,
         109 * DEG,
@@ -151,9 +151,9 @@ def test_correction_for_launch_is_launch_correction_of_its_fields(model):
     for name in ("drag_area_m2", "mass_kg", "surface_density_kg_m3", "rotation_rate_rad_s"):
         assert getattr(by_launch, name) == pytest.approx(getattr(explicit, name), rel=1e-12), name
     assert by_launch.rotation_rate_rad_s == earth.ROTATION_RATE_RAD_S
-    solution = eci.solution_for_launch(launch, model)
+    solution = eci.correction_for_launch(launch, model).solution()
     assert solution.apogee_altitude() == pytest.approx(
-        eci.solution_for(explicit).apogee_altitude(), rel=1e-12
+        explicit.solution().apogee_altitude(), rel=1e-12
     )
 
 
@@ -171,7 +171,7 @@ def test_correction_for_launch_takes_each_rounds_mass_drag_and_air():
     )
     given = dict(mass_kg=masses, drag_area_m2=2.85e-3, surface_density_kg_m3=1.14)
     by_launch = eci.correction_for_launch(rounds, "dissertation", **given)
-    explicit = eci.launch_correction(
+    explicit = eci.correction_for_arrays(
         speeds, 85 * DEG, 109 * DEG, BARBADOS.latitude_rad, model="dissertation", **given
     )
     for name in ("velocity_m_s", "misalignment_rad", "beta", "tau", "mass_kg"):
@@ -189,7 +189,7 @@ def test_launch_entry_points_refuse_what_the_eci_mks_cannot_fly():
     with pytest.raises(TypeError, match="Launch"):
         eci.correction_for_launch(BASELINE)
     with pytest.raises(ValueError, match="site_altitude_m"):
-        eci.solution_for_launch(baseline_chapter_4(45.0, site_altitude_m=1000.0))
+        eci.correction_for_launch(baseline_chapter_4(45.0, site_altitude_m=1000.0))
     with pytest.warns(ModelValidityWarning, match="cross_wind_m_s"):
         eci.correction_for_launch(HP_CHAPTER_2)
 
@@ -198,7 +198,7 @@ def test_launch_entry_points_refuse_what_the_eci_mks_cannot_fly():
 def test_eci_solution_scales(decay):
     model = replace(eci.CONSISTENT, name=decay, decay=decay)
     launch = _launch(1800.0, 85.0, 109.0, 13.0, model=model)
-    solution = eci.eci_solution(
+    solution = eci.correction_for_arrays(
         1800.0,
         85 * DEG,
         109 * DEG,
@@ -207,7 +207,7 @@ def test_eci_solution_scales(decay):
         mass_kg=84.0,
         surface_density_kg_m3=1.225,
         model=model,
-    )
+    ).solution()
     cos_mu = math.cos(launch.misalignment_rad)
     assert solution.drive_scale[0, 0] == pytest.approx(cos_mu * launch.speed_ratio_squared)
     expected = cos_mu * (launch.speed_ratio_squared if decay == "consistent" else 1.0)
@@ -245,7 +245,7 @@ def test_dissertation_model_takes_each_angle_where_it_says():
         (lambda: eci.surface_velocity(91 * DEG), "latitude_rad"),
         (lambda: _launch(float("nan"), 85.0, 109.0, 13.0), "speed_m_s"),
         (
-            lambda: eci.launch_correction(
+            lambda: eci.correction_for_arrays(
                 1800.0, 1.4, 1.0, 0.2, drag_area_m2=-1.0, mass_kg=84.0, surface_density_kg_m3=1.2
             ),
             "drag_area_m2",
@@ -255,3 +255,19 @@ def test_dissertation_model_takes_each_angle_where_it_says():
 def test_bad_input_is_named(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_a_launch_is_not_checked_again_on_its_way_in(monkeypatch):
+    """A Launch's values were checked when it was made: its door checks only what it is given
+    beside it (here nothing), while the door for loose arrays checks each."""
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("checked again")
+
+    launch = baseline_chapter_4(60.0, bearing_deg=109.0, latitude_deg=13.1)
+    monkeypatch.setattr(eci, "check_range", refuse)
+    eci.correction_for_launch(launch)
+    with pytest.raises(AssertionError, match="checked again"):
+        eci.correction_for_launch(launch, mass_kg=80.0)
+    with pytest.raises(AssertionError, match="checked again"):
+        _launch(1800.0, 85.0, 109.0, 13.0)

@@ -128,7 +128,7 @@ def test_rotating_vacuum_mks_is_exact_against_the_3dof(rotating_vacuum):
 
 
 def test_the_ascending_root_meets_the_turning_target_on_the_public_eci_path():
-    """Rebuild the MKS with eci.solution_for_launch, find where it rises through the target's
+    """Rebuild the MKS with eci.correction_for_launch, find where it rises through the target's
     radius with brentq, and compare with the target turned by omega t."""
     target = _destination(ROTATING, 120.0, 60e3, altitude_m=40e3)
     result = firing_solutions(ROTATING, target, branch="ascending")
@@ -136,7 +136,7 @@ def test_the_ascending_root_meets_the_turning_target_on_the_public_eci_path():
     for root in result.roots:
         launch = ROTATING.but(elevation_deg=root.elevation_deg, bearing_deg=root.bearing_deg)
         correction = eci.correction_for_launch(launch)
-        solution = eci.solution_for(correction, warn=False)
+        solution = correction.solution(warn=False)
         radius = earth.RADIUS_M + target.altitude_m
         theta = optimize.brentq(
             lambda t: solution.radius(t)[0] - radius,

@@ -72,7 +72,7 @@ def _reference_excess(gun: Launch, target, branch: str, elevations_rad=ELEVATION
             elevation_deg=np.degrees(elevations_rad[index]), bearing_deg=math.degrees(bearing)
         )
     )
-    solution = eci.solution_for(correction, warn=False)
+    solution = correction.solution(warn=False)
     radius = earth.RADIUS_M + target.altitude_m
     apogee = np.where(solution.escapes, 0.0, solution.apogee_angle)
     reached = ~solution.escapes & (np.ravel(solution.radius(apogee[:, None])) > radius)

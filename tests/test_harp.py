@@ -173,7 +173,7 @@ def test_a_round_is_fired_from_its_sites_gun_with_its_own_mass_drag_and_air(site
     assert (gun.bearing_rad == launch_site.gun_bearing_rad).all()
     assert (gun.elevation_rad == launch_site.elevation_rad).all()
     rounds = apogees.round_corrections(site, speeds, masses, 2.8e-3, "consistent")
-    explicit = eci.launch_correction(
+    explicit = eci.correction_for_arrays(
         speeds,
         launch_site.elevation_rad,
         launch_site.gun_bearing_rad,

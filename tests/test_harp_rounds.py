@@ -52,7 +52,7 @@ def test_starts_at_gun_and_peaks_at_eq_6_4_apogee(round_181):
 def test_earth_fixed_range_lags_inertial_by_site_motion(round_181):
     """R theta - ground range ~ omega R cos(lat) t along the inertial azimuth (within 5%)."""
     _, _, row = harp_rounds.round_row("barbados", 181)
-    azimuth = eci.launch_correction(
+    azimuth = eci.correction_for_arrays(
         row.muzzle_speed_m_s,
         BARBADOS.elevation_rad,
         BARBADOS.gun_bearing_rad,
@@ -94,8 +94,8 @@ def test_splash_range_is_the_great_circle_to_the_moved_site():
         BARBADOS.gun_bearing_rad,
         BARBADOS.latitude_rad,
     )
-    launch = eci.launch_correction(*arguments, **options)
-    solution = eci.eci_solution(*arguments, **options, warn=False)
+    launch = eci.correction_for_arrays(*arguments, **options)
+    solution = launch.solution(warn=False)
     up = np.array([math.cos(BARBADOS.latitude_rad), 0.0, math.sin(BARBADOS.latitude_rad)])
     velocity = np.ravel(launch.velocity_m_s)
     along = velocity - (velocity @ up) * up

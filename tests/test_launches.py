@@ -158,9 +158,9 @@ def test_the_mks_of_launches_is_the_mks_of_each_launch():
 
 def test_the_eci_mks_of_launches_is_the_eci_mks_of_each_launch():
     launches = rotating()
-    together = eci.solution_for_launch(launches, warn=False)
+    together = eci.correction_for_launch(launches).solution(warn=False)
     for i, launch in enumerate(launches):
-        alone = eci.solution_for_launch(launch, warn=False)
+        alone = eci.correction_for_launch(launch).solution(warn=False)
         assert np.ravel(together.apogee_altitude())[i] == pytest.approx(
             float(np.ravel(alone.apogee_altitude())[0]), rel=1e-14
         )
@@ -188,7 +188,7 @@ def test_engines_refuse_or_warn_per_launch_and_say_which():
     with pytest.raises(ValueError, match=r"rotation_rate_rad_s\[0\]"):
         mks.for_launch(rotating())
     with pytest.raises(ValueError, match=r"site_altitude_m\[1\]"):
-        eci.solution_for_launch(Launches(BASELINE, 2157.0, 45.0, site_altitude_m=[0.0, 10.0]))
+        eci.correction_for_launch(Launches(BASELINE, 2157.0, 45.0, site_altitude_m=[0.0, 10.0]))
     windy = Launches(BASELINE, 2157.0, 45.0, cross_wind_m_s=[0.0, 5.0, 0.0])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")

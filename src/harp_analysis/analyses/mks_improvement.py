@@ -437,7 +437,7 @@ def _mks_errors(solution: mks_improved.ImprovedSolution, flights, index: int) ->
 
 def _judged_row(entry: BroadLaunch, flights, index: int, fitted: Calibration) -> dict:
     told = entry.told
-    beta = float(eci.solution_for_launch(told, warn=False).beta.flat[0])
+    beta = float(eci.correction_for_launch(told).solution(warn=False).beta.flat[0])
     row = {
         "projectile": entry.projectile,
         "speed_m_s": told.speed_m_s,

@@ -211,7 +211,7 @@ def _steepest_elevation(correction: eci.LaunchCorrection) -> np.ndarray:
 def _base(launch: Launch | Launches, drag_area_m2: float) -> _Base:
     correction = eci.correction_for_launch(launch, drag_area_m2=drag_area_m2)
     flown = replace(correction, elevation_rad=_steepest_elevation(correction))
-    solution = eci.solution_for(flown, n_terms=N_TERMS, warn=False)
+    solution = flown.solution(n_terms=N_TERMS, warn=False)
     if np.any(solution.escapes):
         raise ValueError(
             f"the MKS under the {ENGINE} escapes for this launch: no flight to correct"

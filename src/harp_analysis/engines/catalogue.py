@@ -32,7 +32,7 @@ engine                wind   rotating  day's     full table  batch  rigid body  
 What an engine does not model it says: a wind or a day's air left out is a
 :class:`~harp_analysis.foundation.validation.ModelValidityWarning` naming the field; a rotating
 Earth it cannot fly is a ValueError naming ``rotation_rate_rad_s``. The MKS's many launches at once
-(:func:`.mks.for_launch`, :func:`.eci.solution_for_launch`) are one closed-form solution, not
+(:func:`.mks.for_launch`, :func:`.eci.correction_for_launch`) are one closed-form solution, not
 flights; the improved MKS (:mod:`.mks_improved`) has no trajectory table and is not listed.
 """
 

@@ -13,10 +13,13 @@ enter :class:`mks.ModifiedKeplerSolution` as ``drive_scale`` = cos(mu) (Vrel/V)^
 and ``decay_scale`` = cos(mu) (eq 6.14).
 
 Vectors are (3, ...) arrays in the inertial frame of :func:`trajectory.launch_frame` at longitude 0
-(z along the Earth's axis); angles in rad, speeds in m/s, SI throughout. The one door from a
-:class:`~harp_analysis.models.launch.Launch` is :func:`correction_for_launch` (and
-:func:`solution_for_launch`); :func:`simulate_eci_mks` flies the ECI MKS as the engines'
-trajectory table, in the 3DOF's frame on a rotating Earth.
+(z along the Earth's axis); angles in rad, speeds in m/s, SI throughout. The door from a
+:class:`~harp_analysis.models.launch.Launch` or :class:`~harp_analysis.models.launch.Launches`
+is :func:`correction_for_launch`, and from loose arrays (the appendices' rounds)
+:func:`correction_for_arrays`, which checks them; either gives a :class:`LaunchCorrection`,
+whose :meth:`~LaunchCorrection.solution` is the ECI MKS. :func:`simulate_eci_mks` flies it as
+the engines' trajectory table, in the 3DOF's frame on a rotating Earth. :func:`corrected_launch`
+is the compiled formula behind both doors, shared with the fire-control solver's kernels.
 
 Sign of V_tangent (the text leaves it open: "in the plane created by the relative velocity and
 the velocity corrected for Earth rotation and tangent to the corrected velocity"). The drag
@@ -81,12 +84,8 @@ __all__ = [
     "tangent_direction",
     "elevation_azimuth",
     "initial_angular_momentum",
-    "corrected_launch",
-    "launch_correction",
-    "eci_solution",
-    "solution_for",
     "correction_for_launch",
-    "solution_for_launch",
+    "correction_for_arrays",
     "site_surface_speed_km_s",
     "flight_plane",
     "inertial_positions",
@@ -215,7 +214,7 @@ def corrected_launch(
     numpy (arrays of one shape, the model's flags plain bools) and compiled code (numbers):
     Vrel, omega x r0, mu, the corrected speed, elevation and azimuth, V_tangent, the launch
     velocity, its speed, elevation and azimuth, (Vrel/V)^2, beta, tau and L0, vectors as
-    component triples (:func:`launch_correction` names them). The flags are
+    component triples (:class:`LaunchCorrection` names them). The flags are
     :class:`EciModel`'s choices: ``include_tangent``, ``tangent_sine == "corrected"``,
     ``beta_elevation == "launch"``, ``tau_elevation == "launch"``, ``speed_ratio == "launch"``."""
     up, downrange, east = launch_axes(latitude_rad, 0.0 * latitude_rad, bearing_rad)
@@ -493,6 +492,38 @@ class LaunchCorrection:
     surface_density_kg_m3: np.ndarray  # rho0, eq 3.11's air at the gun
     decay_constant_per_m: float  # k of eq 3.11
     rotation_rate_rad_s: float
+    radius_m: float = earth.RADIUS_M  # r0
+
+    def solution(self, *, n_terms: int = 3, warn: bool = True) -> mks.ModifiedKeplerSolution:
+        """The ECI Modified Kepler solution of these launches (eqs 6.6-6.15): the MKS launched
+        at the launch speed and elevation with their beta and tau, :attr:`drive_scale` on beta
+        in its driving terms (eqs 6.9-6.10) and :attr:`decay_scale` in its decay (eq 6.14).
+
+        Parameters
+        ----------
+        n_terms : int
+            Terms of the series of eq 3.30.
+        warn : bool
+            Warn where a launch leaves the MKS's validity (beta above 0.25, escape, an apogee
+            in the sensible atmosphere).
+
+        Returns
+        -------
+        mks.ModifiedKeplerSolution
+            Apogee, impact and the state at any angular range, numbers for one launch or
+            arrays for many.
+        """
+        return mks.ModifiedKeplerSolution(
+            self.speed_m_s,
+            self.elevation_rad,
+            self.beta,
+            self.tau,
+            n_terms=n_terms,
+            radius_m=self.radius_m,
+            drive_scale=self.drive_scale,
+            decay_scale=self.decay_scale,
+            warn=warn,
+        )
 
     @property
     def drive_scale(self) -> np.ndarray:
@@ -517,44 +548,25 @@ class LaunchCorrection:
         return self.initial_angular_momentum_m2_s * np.exp(-self.beta * self.decay_scale)
 
 
-def launch_correction(
+def _corrections(
     speed_m_s,
     elevation_rad,
     bearing_rad,
     latitude_rad,
-    *,
     drag_area_m2,
     mass_kg,
     surface_density_kg_m3,
-    decay_constant_per_m=TEXT_DECAY_CONSTANT_PER_M,
-    rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
-    radius_m=earth.RADIUS_M,
-    model: str | EciModel = CONSISTENT,
+    decay_constant_per_m: float,
+    rotation_rate_rad_s: float,
+    radius_m: float,
+    model: EciModel,
 ) -> LaunchCorrection:
-    """Eqs 5.1-5.8 and 6.11-6.16 for guns firing at ``speed_m_s`` (relative to the ground),
-    ``elevation_rad``, ``bearing_rad`` from ``latitude_rad``; ``drag_area_m2`` is Cd0 A and
-    ``model`` (an :class:`EciModel` or its name) settles what the text leaves open.
-
-    mu refers to V = Vrel + omega x r0, as in Figs 5.2-5.3 and the appendices' mu column."""
-    model = get_model(model)
-    mass = check_range(
-        finite_array(mass_kg, "mass_kg"), "mass_kg", low=0.0, low_inclusive=False, unit="kg"
-    )
-    drag_area = check_range(
-        finite_array(drag_area_m2, "drag_area_m2"), "drag_area_m2", low=0.0, unit="m^2"
-    )
-    density = check_range(
-        finite_array(surface_density_kg_m3, "surface_density_kg_m3"),
-        "surface_density_kg_m3",
-        low=0.0,
-        unit="kg/m^3",
-    )
+    """:func:`corrected_launch` of launches whose values were checked at their door
+    (:func:`correction_for_launch`, :func:`correction_for_arrays`), broadcast together."""
     speed, elevation, bearing, latitude, mass, drag_area, density = np.broadcast_arrays(
-        *_check_launch(speed_m_s, elevation_rad, bearing_rad, latitude_rad),
-        mass,
-        drag_area,
-        density,
-    )
+        speed_m_s, elevation_rad, bearing_rad, latitude_rad, mass_kg, drag_area_m2,
+        surface_density_kg_m3,
+    )  # fmt: skip
     (
         relative,
         surface,
@@ -606,10 +618,32 @@ def launch_correction(
         np.array(density),
         decay_constant_per_m,
         rotation_rate_rad_s,
+        radius_m,
     )
 
 
-def eci_solution(
+def _check_mass(mass_kg):
+    return check_range(
+        finite_array(mass_kg, "mass_kg"), "mass_kg", low=0.0, low_inclusive=False, unit="kg"
+    )
+
+
+def _check_drag_area(drag_area_m2):
+    return check_range(
+        finite_array(drag_area_m2, "drag_area_m2"), "drag_area_m2", low=0.0, unit="m^2"
+    )
+
+
+def _check_density(surface_density_kg_m3):
+    return check_range(
+        finite_array(surface_density_kg_m3, "surface_density_kg_m3"),
+        "surface_density_kg_m3",
+        low=0.0,
+        unit="kg/m^3",
+    )
+
+
+def correction_for_arrays(
     speed_m_s,
     elevation_rad,
     bearing_rad,
@@ -622,29 +656,29 @@ def eci_solution(
     rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
     radius_m=earth.RADIUS_M,
     model: str | EciModel = CONSISTENT,
-    n_terms: int = 3,
-    warn: bool = True,
-) -> mks.ModifiedKeplerSolution:
-    """The ECI Modified Kepler solution (eqs 6.6-6.15): the MKS launched at the launch speed
-    and elevation of :func:`launch_correction` with its beta and tau, drive_scale = cos(mu)
-    (Vrel/V)^2 (eqs 6.9-6.10) and the decay of ``model``."""
-    return solution_for(
-        launch_correction(
-            speed_m_s,
-            elevation_rad,
-            bearing_rad,
-            latitude_rad,
-            drag_area_m2=drag_area_m2,
-            mass_kg=mass_kg,
-            surface_density_kg_m3=surface_density_kg_m3,
-            decay_constant_per_m=decay_constant_per_m,
-            rotation_rate_rad_s=rotation_rate_rad_s,
-            radius_m=radius_m,
-            model=model,
-        ),
-        n_terms=n_terms,
-        radius_m=radius_m,
-        warn=warn,
+) -> LaunchCorrection:
+    """Eqs 5.1-5.8 and 6.11-6.16 for guns given as loose numbers or arrays (the appendices'
+    rounds), each checked here: firing at ``speed_m_s`` (relative to the ground),
+    ``elevation_rad``, ``bearing_rad`` from ``latitude_rad``; ``drag_area_m2`` is Cd0 A and
+    ``model`` (an :class:`EciModel` or its name) settles what the text leaves open. A
+    :class:`~harp_analysis.models.launch.Launch` goes in by :func:`correction_for_launch`.
+
+    mu refers to V = Vrel + omega x r0, as in Figs 5.2-5.3 and the appendices' mu column."""
+    speed, elevation, bearing, latitude = _check_launch(
+        speed_m_s, elevation_rad, bearing_rad, latitude_rad
+    )
+    return _corrections(
+        speed,
+        elevation,
+        bearing,
+        latitude,
+        _check_drag_area(drag_area_m2),
+        _check_mass(mass_kg),
+        _check_density(surface_density_kg_m3),
+        decay_constant_per_m,
+        rotation_rate_rad_s,
+        radius_m,
+        get_model(model),
     )
 
 
@@ -656,12 +690,14 @@ def correction_for_launch(
     drag_area_m2=None,
     surface_density_kg_m3=None,
 ) -> LaunchCorrection:
-    """:func:`launch_correction` of a :class:`~harp_analysis.models.launch.Launch` (or of
+    """The ECI corrections (eqs 5.1-5.8 and 6.11-6.16) of a
+    :class:`~harp_analysis.models.launch.Launch` (or of
     :class:`~harp_analysis.models.launch.Launches` sharing one Earth rotation, each launch a
-    column): its speed, elevation, bearing and latitude, Cd0 A at the launch Mach, its mass, its
-    air's density at the gun (:func:`mks.gun_density_kg_m3`) and its Earth rotation. The ECI
-    MKS is drag-only: a wind is ignored with a warning; it launches from the Earth's surface
-    (r0 = R).
+    column), the one door into the ECI MKS from a launch: its speed, elevation, bearing and
+    latitude (checked when the launch was made, so not again), Cd0 A at the launch Mach, its
+    mass, its air's density at the gun (:func:`mks.gun_density_kg_m3`) and its Earth rotation.
+    :meth:`LaunchCorrection.solution` is its MKS. The ECI MKS is drag-only: a wind is ignored
+    with a warning; it launches from the Earth's surface (r0 = R).
 
     ``mass_kg``, ``drag_area_m2`` (Cd0 A, m^2) and ``surface_density_kg_m3`` (rho0 at the gun)
     replace what the launch's projectile and air give, each a number or an array broadcasting
@@ -669,6 +705,7 @@ def correction_for_launch(
     each with its own mass; a drag area being fitted; a site's measured air)."""
     if not isinstance(launch, Launch | Launches):
         raise TypeError(f"launch must be a Launch or Launches; got {type(launch).__name__}")
+    model = get_model(model)
     launch.require_zero("ECI MKS", "site_altitude_m", reason="it launches from r0 = R")
     launch.warn_ignored(
         "ECI MKS", "cross_wind_m_s", "head_wind_m_s", reason="the MKS has no wind (Chapter 3)"
@@ -679,73 +716,26 @@ def correction_for_launch(
         else launch.shared("rotation_rate_rad_s")
     )
     projectile = launch.projectile
-    return launch_correction(
+    return _corrections(
         launch.speed_m_s,
         launch.elevation_rad,
         launch.bearing_rad,
         launch.latitude_rad,
-        drag_area_m2=(
+        (
             launch.launch_drag_coefficient * projectile.reference_area_m2
             if drag_area_m2 is None
-            else drag_area_m2
+            else _check_drag_area(drag_area_m2)
         ),
-        mass_kg=projectile.mass_kg if mass_kg is None else mass_kg,
-        surface_density_kg_m3=(
+        projectile.mass_kg if mass_kg is None else _check_mass(mass_kg),
+        (
             mks.gun_density_kg_m3(launch)
             if surface_density_kg_m3 is None
-            else surface_density_kg_m3
+            else _check_density(surface_density_kg_m3)
         ),
-        rotation_rate_rad_s=rotation,
-        model=model,
-    )
-
-
-def solution_for_launch(
-    launch: Launch | Launches,
-    model: str | EciModel = CONSISTENT,
-    *,
-    n_terms: int = 3,
-    warn: bool = True,
-) -> mks.ModifiedKeplerSolution:
-    """The ECI MKS of a :class:`~harp_analysis.models.launch.Launch`, or of every launch of a
-    :class:`~harp_analysis.models.launch.Launches` at once (:func:`correction_for_launch`).
-
-    Parameters
-    ----------
-    launch : Launch or Launches
-        One launch or many, on a rotating Earth or not (the wind is left out: the MKS has
-        none).
-    model : str or EciModel
-        The reading of Chapters 5-6's corrections (one of :data:`MODELS`' names, or a model).
-    n_terms : int
-        Terms of the series of eq 3.30.
-    warn : bool
-        Warn where a launch leaves the MKS's validity (beta above 0.25, escape, an apogee in
-        the sensible atmosphere).
-
-    Returns
-    -------
-    mks.ModifiedKeplerSolution
-        The MKS of the corrected launch velocity (eqs 6.6-6.15): apogee, impact and the state
-        at any angular range, numbers for one Launch or arrays for many.
-    """
-    return solution_for(correction_for_launch(launch, model), n_terms=n_terms, warn=warn)
-
-
-def solution_for(
-    launch: LaunchCorrection, *, n_terms: int = 3, radius_m=earth.RADIUS_M, warn: bool = True
-) -> mks.ModifiedKeplerSolution:
-    """The ECI MKS of an already corrected launch (:func:`eci_solution` without recomputing)."""
-    return mks.ModifiedKeplerSolution(
-        launch.speed_m_s,
-        launch.elevation_rad,
-        launch.beta,
-        launch.tau,
-        n_terms=n_terms,
-        radius_m=radius_m,
-        drive_scale=launch.drive_scale,
-        decay_scale=launch.decay_scale,
-        warn=warn,
+        TEXT_DECAY_CONSTANT_PER_M,
+        rotation,
+        earth.RADIUS_M,
+        model,
     )
 
 
@@ -818,7 +808,8 @@ def simulate_eci_mks(
     surface_density_kg_m3: float | None = None,
     warn: bool = True,
 ) -> pd.DataFrame:
-    """The ECI MKS of ``launch`` (:func:`solution_for_launch` under ``model``, eqs 6.6-6.15)
+    """The ECI MKS of ``launch`` (:func:`correction_for_launch` under ``model`` and its
+    :meth:`~LaunchCorrection.solution`, eqs 6.6-6.15)
     as the engines' trajectory table (:mod:`harp_analysis.models.trajectory`), launch to
     impact, with the shared metadata (no right-hand side is evaluated: ``rhs_evaluations =
     steps = 0``), ``n_terms``, ``model`` (its name), ``beta`` (eq 6.11) and ``decay_scale``
@@ -872,12 +863,12 @@ def simulate_eci_mks(
     count = whole_number(n_points, "n_points", low=2, high=MAX_ROWS)
     if not isinstance(launch, Launch):
         raise TypeError(
-            f"launch must be a Launch; got {type(launch).__name__} (solution_for_launch "
-            "solves Launches together)"
+            f"launch must be a Launch; got {type(launch).__name__} (correction_for_launch "
+            "corrects Launches together)"
         )
     times = None if times_s is None else _check_times(times_s)
     correction = correction_for_launch(launch, model, surface_density_kg_m3=surface_density_kg_m3)
-    solution = solution_for(correction, n_terms=n_terms, warn=warn)
+    solution = correction.solution(n_terms=n_terms, warn=warn)
     if solution.escapes[0]:
         raise ValueError(
             f"the ECI MKS of launch.speed_m_s = {launch.speed_m_s:g} escapes (its asymptotic "

@@ -951,7 +951,7 @@ def for_launch(
     sharing a projectile and an atmosphere. Cd0 of the projectile's drag law at the launch Mach
     number, rho0 of the launch's air at the gun, k of eq 3.11 (Chapter 3 B), r0 = R + the
     site's altitude. The MKS is planar and drag-only: a wind is ignored with a warning, and a
-    rotating Earth is :func:`harp_analysis.engines.eci.solution_for_launch`'s.
+    rotating Earth is :func:`harp_analysis.engines.eci.correction_for_launch`'s.
 
     Parameters
     ----------
@@ -978,7 +978,7 @@ def for_launch(
     launches.require_zero(
         "MKS",
         "rotation_rate_rad_s",
-        reason="the MKS is non-rotating; eci.solution_for_launch corrects it",
+        reason="the MKS is non-rotating; eci.correction_for_launch corrects it",
     )
     vertical = launches.elevation_deg >= 90.0
     if vertical.any():

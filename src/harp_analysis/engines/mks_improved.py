@@ -512,7 +512,7 @@ def _with_tangent(correction, tangent_speed_m_s: float, latitude_rad: float):
 def _ascent_decay(correction, air: _Air, n_terms: int):
     """(corrected launch, MKS) whose beta and tau are the loss and first moment along the MKS's
     own ascent, and whose V_tangent is the cross-track drag's impulse along it."""
-    solution = eci.solution_for(correction, n_terms=n_terms, warn=False)
+    solution = correction.solution(n_terms=n_terms, warn=False)
     beta, tau = float(solution.beta[0, 0] * solution.decay_scale[0, 0]), float(solution.tau[0, 0])
     radius = float(solution.radius_m[0, 0])
     # The loss decays the angular momentum the gun gives, that of Vrel + omega x r0.
@@ -794,11 +794,11 @@ def _correction(launch: Launch):
 
 
 def dissertation(launch: Launch, *, n_terms: int = 3) -> ImprovedSolution:
-    """The dissertation's MKS of ``launch`` (Chapter 5's ECI MKS, :func:`eci.solution_for_launch`
+    """The dissertation's MKS of ``launch`` (Chapter 5's ECI MKS, :func:`eci.correction_for_launch`
     with the consistent decay; on a non-rotating Earth it is :func:`mks.for_launch`) behind the
     same interface, with no re-entry decay."""
     correction = _correction(launch)
-    ascent = eci.solution_for(correction, n_terms=n_terms, warn=False)
+    ascent = correction.solution(n_terms=n_terms, warn=False)
     return ImprovedSolution(launch, correction, ascent, variant="dissertation")
 
 
@@ -856,7 +856,7 @@ def solve(launch, calibration=UNCALIBRATED, *, n_terms=3):
     if isinstance(launch, Launches):
         return [solve(one, calibration, n_terms=n_terms) for one in launch]
     correction = _correction(launch)
-    first = eci.solution_for(correction, n_terms=n_terms, warn=False)
+    first = correction.solution(n_terms=n_terms, warn=False)
     air = _Air(launch, _plane(first, correction, launch.latitude_rad))
     beta = float(first.beta[0, 0])
     if beta > MAX_JUDGED_BETA:

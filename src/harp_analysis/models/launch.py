@@ -7,7 +7,8 @@ with the day's change of density and temperature, and the Earth's rotation. It i
 once, at construction, and each error names the field. The engines
 (:func:`harp_analysis.engines.threedof.simulate_3dof`,
 :func:`harp_analysis.engines.sixdof.simulate_6dof`, :func:`harp_analysis.engines.mlt.simulate_mlt`,
-:func:`harp_analysis.engines.mks.for_launch`, :func:`harp_analysis.engines.eci.solution_for_launch`,
+:func:`harp_analysis.engines.mks.for_launch`,
+:func:`harp_analysis.engines.eci.correction_for_launch`,
 :func:`harp_analysis.engines.eci.simulate_eci_mks`,
 :func:`harp_analysis.engines.appendix_a.simulate_appendix_a`) take one and add only their own
 numerical options, so no engine hides a scenario default: the dissertation's cases are the named
@@ -287,7 +288,7 @@ class Launch(_LaunchAir):
 class Launches(_LaunchAir):
     """Many launches of one projectile through one atmosphere, as arrays: the batch the engines
     fly at once (:func:`harp_analysis.engines.mks.for_launch`,
-    :func:`harp_analysis.engines.eci.solution_for_launch`,
+    :func:`harp_analysis.engines.eci.correction_for_launch`,
     :func:`harp_analysis.engines.threedof.fly_3dof`,
     :func:`harp_analysis.engines.threedof.simulate_3dof_batch`,
     :func:`harp_analysis.engines.mks_improved.solve`).

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...engines import eci
 from ...foundation.validation import check_choice, check_range, finite_scalar
 from ...models.atmosphere import DRY_AIR_GAS_CONSTANT_J_KG_K
 from ..harp import apogees
@@ -60,7 +59,7 @@ def apogee_simplification_shift_km(site: str = "barbados", model: str = "dissert
 
 def harp_solution(site: str, model: str = "dissertation"):
     """The three-term ECI MKS of every appendix row of ``site`` under ``model``."""
-    return eci.solution_for(apogees.launch_corrections(site, model), warn=False)
+    return apogees.launch_corrections(site, model).solution(warn=False)
 
 
 def fahrenheit_to_kelvin(temperature_f: float) -> float:

@@ -402,7 +402,7 @@ def air_temperature_k(speed_of_sound_m_s: float) -> float:
 def _predicted(site, model, drag_area):
     table = appendix_rounds(site)
     launch = launch_corrections(site, model, drag_area)
-    predicted = np.atleast_1d(eci.solution_for(launch, warn=False).apogee_altitude("eq_6_4"))
+    predicted = np.atleast_1d(launch.solution(warn=False).apogee_altitude("eq_6_4"))
     frame = pd.DataFrame(
         {
             "round_number": table.round_number,

@@ -183,7 +183,7 @@ def _apogees_m(
     rounds = apogees.round_corrections(
         site, speed, mass, area, model, surface_density_kg_m3=density
     )
-    apogee = eci.solution_for(rounds, warn=False).apogee_altitude("eq_6_4")
+    apogee = rounds.solution(warn=False).apogee_altitude("eq_6_4")
     return np.reshape(apogee, arrays[0].shape)
 
 
