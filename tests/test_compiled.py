@@ -1,14 +1,16 @@
 """Compiled kernels: one source for numpy and numba, the same numbers from both, and a disk cache
 that a change to any formula a kernel reaches invalidates."""
 
+import math
+
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from harp_analysis.analyses import effort
 from harp_analysis.engines import threedof
-from harp_analysis.foundation import compiled, kernel_digest
+from harp_analysis.foundation import compiled, kernel_digest, validation
 from harp_analysis.models import atmosphere, drag
 from harp_analysis.models.launch import HP_CHAPTER_2, baseline_chapter_4
 
@@ -42,6 +44,33 @@ def test_select_is_where_on_arrays_and_a_choice_on_numbers():
     choose = compiled.jit(lambda flag: compiled.select(flag, 1.0, 2.0))
     assert choose(True) == 1.0 and choose(False) == 2.0
     assert isinstance(choose(True), float)  # a number, not numba's 0-d array of np.where
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    value=st.floats(allow_nan=True, allow_infinity=True),
+    ends=st.sampled_from([(0.0, 1.0), (-2.5, 0.0), (0.0, math.inf), (-math.inf, math.inf)]),
+    flags=st.tuples(st.booleans(), st.booleans()),
+)
+@example(value=math.inf, ends=(0.0, math.inf), flags=(True, True))
+@example(value=-math.inf, ends=(-math.inf, math.inf), flags=(True, True))
+@example(value=math.nan, ends=(-math.inf, math.inf), flags=(True, True))
+@example(value=1.0, ends=(0.0, 1.0), flags=(True, False))
+def test_an_interval_holds_the_same_numbers_compiled_as_in_python(value, ends, flags):
+    """Bounds' one test of membership, written out here: an end is reached only where closed,
+    and NaN and infinities lie in no interval (a kernel and a door must not disagree)."""
+    (low, high), (low_closed, high_closed) = ends, flags
+    expected = (
+        math.isfinite(value)
+        and (low <= value if low_closed else low < value)
+        and (value <= high if high_closed else value < high)
+    )
+    bounds = validation.Bounds(low, high, low_closed, high_closed)
+    kernel = compiled.jit(lambda x: validation.inside(x, low, high, low_closed, high_closed))
+    assert bool(bounds.inside(value)) is expected
+    with np.errstate(invalid="ignore"):  # inf - inf, the finite test, is NaN by design
+        assert bool(bounds.inside(np.array([value]))[0]) is expected
+    assert kernel(value) is expected
 
 
 def test_the_cache_folder_follows_every_formula_a_kernel_reaches():

@@ -49,7 +49,6 @@ import math
 import warnings
 from collections.abc import Sequence
 from functools import cache, cached_property
-from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -57,9 +56,10 @@ import pandas as pd
 from ..foundation import earth
 from ..foundation.compiled import formula, jit
 from ..foundation.validation import (
+    Bounds,
     ModelValidityWarning,
-    check_range,
     finite_array,
+    inside,
     positive_scalar,
     whole_number,
 )
@@ -157,30 +157,29 @@ def decay_rate_tau(
     return decay_constant_per_m * radius_m * np.tan(elevation_rad)
 
 
-#: Each argument's domain (:func:`~harp_analysis.foundation.validation.check_range`'s
-#: keywords). Plain numbers and float arrays pass the class's door unchecked: the constants'
-#: kernel holds every launch to these domains as it reads it (:func:`_in_domain`, a pass over
-#: the arrays saved), and where one lies outside, :func:`_checked` names the argument.
-_DOMAINS: dict[str, dict[str, Any]] = {
-    "speed_m_s": {"low": 0.0, "low_inclusive": False, "unit": "m/s"},
-    "elevation_rad": {
-        "low": 0.0,
-        "low_inclusive": False,
-        "high": math.pi / 2,
-        "high_inclusive": False,
-        "unit": "rad",
-    },
-    "beta": {"low": 0.0},
-    "tau": {"low": 0.0},
-    "radius_m": {"low": 0.0, "low_inclusive": False, "unit": "m"},
-    "drive_scale": {},
-    "decay_scale": {},
+#: Each argument's domain. Plain numbers and float arrays pass the class's door unchecked: the
+#: constants' kernel holds every launch to these domains as it reads it (:func:`_in_domain`, a
+#: pass over the arrays saved), and where one lies outside, :func:`_checked` names the argument.
+_DOMAINS: dict[str, Bounds] = {
+    "speed_m_s": Bounds(low=0.0, low_inclusive=False, unit="m/s"),
+    "elevation_rad": Bounds(
+        low=0.0, high=math.pi / 2, low_inclusive=False, high_inclusive=False, unit="rad"
+    ),
+    "beta": Bounds(low=0.0),
+    "tau": Bounds(low=0.0),
+    "radius_m": Bounds(low=0.0, low_inclusive=False, unit="m"),
+    "drive_scale": Bounds(),
+    "decay_scale": Bounds(),
 }
+# the domains' limits as constants of the kernel
+_SPEED, _ELEVATION, _BETA, _TAU, _RADIUS, _DRIVE, _DECAY = (
+    bounds.limits for bounds in _DOMAINS.values()
+)
 
 
 def _checked(value, name: str):
     """``value`` as a finite float array inside ``name``'s domain, or a ValueError naming it."""
-    return check_range(finite_array(value, name), name, **_DOMAINS[name])
+    return _DOMAINS[name].check(finite_array(value, name), name)
 
 
 def _argument(value, name: str):
@@ -283,18 +282,13 @@ def u_at(table, i, tau, theta):
 def _in_domain(speed, elevation, beta, tau, radius, drive_scale, decay_scale):
     """Whether one launch's arguments lie in their domains, :data:`_DOMAINS` (NaN in none)."""
     return (  # as the kernel reads each launch: 4 ns of its 52, where a pass over each array took 8
-        (speed > 0.0)
-        & (speed < math.inf)
-        & (elevation > 0.0)
-        & (elevation < math.pi / 2)
-        & (beta >= 0.0)
-        & (beta < math.inf)
-        & (tau >= 0.0)
-        & (tau < math.inf)
-        & (radius > 0.0)
-        & (radius < math.inf)
-        & (abs(drive_scale) < math.inf)
-        & (abs(decay_scale) < math.inf)
+        inside(speed, *_SPEED)
+        & inside(elevation, *_ELEVATION)
+        & inside(beta, *_BETA)
+        & inside(tau, *_TAU)
+        & inside(radius, *_RADIUS)
+        & inside(drive_scale, *_DRIVE)
+        & inside(decay_scale, *_DECAY)
     )
 
 

@@ -5,9 +5,12 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Iterable
-from typing import Any, TypeVar
+from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
+
+from .compiled import formula
 
 __all__ = [
     "ModelValidityWarning",
@@ -18,6 +21,8 @@ __all__ = [
     "whole_number",
     "probability",
     "positive_scalar",
+    "Bounds",
+    "inside",
     "check_range",
     "check_choice",
 ]
@@ -107,37 +112,92 @@ def finite_scalar(value, name: str) -> float:
 Checked = TypeVar("Checked", float, np.ndarray)
 
 
+@formula
+def inside(value, low, high, low_inclusive, high_inclusive):
+    """Whether ``value`` (a number, an array of them, or a number in compiled code) lies in the
+    interval from ``low`` to ``high``, each end closed where its flag says; NaN never does.
+    Kernels call it with a :attr:`Bounds.limits` as constants (mks's domains, per launch)."""
+    above = value >= low if low_inclusive else value > low
+    below = value <= high if high_inclusive else value < high
+    return above & below & (value - value == 0.0)  # the last: finite
+
+
+@dataclass(frozen=True)
+class Bounds:
+    """An interval a number must lie in: the one vocabulary of the package's range checks, on a
+    number (:meth:`number`), an array (:meth:`array`, :meth:`check`) or, through
+    :attr:`limits` and :func:`inside`, in compiled code."""
+
+    low: float = -math.inf
+    high: float = math.inf
+    low_inclusive: bool = True
+    high_inclusive: bool = True
+    unit: str = ""
+
+    @property
+    def limits(self) -> tuple[float, float, bool, bool]:
+        """(low, high, low_inclusive, high_inclusive): :func:`inside`'s arguments after the
+        value, constants for a kernel."""
+        return self.low, self.high, self.low_inclusive, self.high_inclusive
+
+    def inside(self, value):
+        """Whether ``value`` (a float, or an array of them) lies inside; NaN never does."""
+        return inside(value, *self.limits)
+
+    def number(self, value, name: str) -> float:
+        """``value`` as a float inside, or an error naming ``name``: TypeError for anything
+        that is not a real number (a string or a bool included)."""
+        if type(value) is float and self.inside(value):  # the common case, checked cheaply
+            return value
+        value = real_number(value, name)
+        if not self.inside(value):
+            raise ValueError(self.outside(name, value))
+        return value
+
+    def array(self, value, name: str) -> np.ndarray:
+        """``value`` (a number or a 1-D array of them, real numbers strictly) as a new float
+        array inside, or an error naming ``name`` and the index of its first bad element."""
+        array = real_array(value, name).copy()
+        outside = ~self.inside(array)
+        if outside.any():
+            index = int(np.flatnonzero(outside)[0])
+            raise ValueError(self.outside(f"{name}[{index}]", float(array.flat[index])))
+        return array
+
+    def check(self, value: Checked, name: str) -> Checked:
+        """``value`` itself, or a ValueError naming ``name`` and its first element outside
+        (NaN passes: refusing it is :func:`finite_array`'s job)."""
+        below = value < self.low if self.low_inclusive else value <= self.low
+        above = value > self.high if self.high_inclusive else value >= self.high
+        bad = np.asarray(below | above)
+        if bad.any():
+            raise ValueError(self.outside(name, np.asarray(value)[bad].flat[0]))
+        return value
+
+    def outside(self, name: str, value: float) -> str:
+        """The error message of ``name``'s ``value`` outside."""
+        interval = (
+            ("[" if self.low_inclusive else "(")
+            + f"{self.low:g}, {self.high:g}"
+            + ("]" if self.high_inclusive else ")")
+        )
+        unit = f" {self.unit}" if self.unit else ""
+        return f"{name} must lie in {interval}{unit}; got {value:g}{unit}"
+
+
 def check_range(
     array: Checked,
     name: str,
     *,
-    low: float | None = None,
-    high: float | None = None,
+    low: float = -math.inf,
+    high: float = math.inf,
     low_inclusive: bool = True,
     high_inclusive: bool = True,
     unit: str = "",
 ) -> Checked:
-    """Raise ``ValueError`` naming ``name`` if any element of ``array`` is outside the interval;
-    return ``array`` itself."""
-    too_low: Any = np.zeros(np.shape(array), bool)
-    too_high: Any = np.zeros(np.shape(array), bool)
-    if low is not None:
-        too_low = array < low if low_inclusive else array <= low
-    if high is not None:
-        too_high = array > high if high_inclusive else array >= high
-    bad = too_low | too_high
-    if np.any(bad):
-        interval = (
-            ("[" if low_inclusive else "(")
-            + ("-inf" if low is None else f"{low:g}")
-            + ", "
-            + ("inf" if high is None else f"{high:g}")
-            + ("]" if high_inclusive else ")")
-        )
-        first = np.asarray(array)[bad].flat[0]
-        suffix = f" {unit}" if unit else ""
-        raise ValueError(f"{name} must lie in {interval}{suffix}; got {first:g}{suffix}")
-    return array
+    """:meth:`Bounds.check` of an interval written in place: ``array`` itself, or a
+    ``ValueError`` naming ``name`` if an element is outside."""
+    return Bounds(low, high, low_inclusive, high_inclusive, unit).check(array, name)
 
 
 def check_choice(value: str, name: str, options: Iterable[str]) -> str:

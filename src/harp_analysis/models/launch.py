@@ -36,65 +36,23 @@ from typing import Any
 
 import numpy as np
 
-from ..foundation.validation import ModelValidityWarning, check_choice, real_array, real_number
+from ..foundation.validation import (
+    Bounds,
+    ModelValidityWarning,
+    check_choice,
+)
 from .atmosphere import ATMOSPHERE_NAMES, SOUND_SQUARED_PER_KELVIN, day_air, get_atmosphere
 from .projectiles import BASELINE, HP, LP, Projectile
 
 __all__ = [
     "Launch",
     "Launches",
-    "Bounds",
     "BOUNDS",
     "HP_CHAPTER_2",
     "LP_CHAPTER_2",
     "chapter_2",
     "baseline_chapter_4",
 ]
-
-
-@dataclass(frozen=True)
-class Bounds:
-    """The interval a launch's field must lie in, checked on one number or on an array."""
-
-    low: float = -math.inf
-    high: float = math.inf
-    low_inclusive: bool = True
-    high_inclusive: bool = True
-    unit: str = ""
-
-    def inside(self, value):
-        """Whether ``value`` (a float, or an array of them) lies inside; NaN never does."""
-        above = value >= self.low if self.low_inclusive else value > self.low
-        below = value <= self.high if self.high_inclusive else value < self.high
-        return above & below & (value - value == 0.0)  # the last: finite
-
-    def number(self, value, name: str) -> float:
-        """``value`` as a float inside, or an error naming ``name``."""
-        if type(value) is float and self.inside(value):  # the common case, checked cheaply
-            return value
-        value = real_number(value, name)
-        if not self.inside(value):
-            raise ValueError(self._outside(name, value))
-        return value
-
-    def array(self, value, name: str) -> np.ndarray:
-        """``value`` (a number or a 1-D array of them) as a new float array inside, or an
-        error naming ``name`` and the index of its first bad element."""
-        array = real_array(value, name).copy()
-        outside = ~self.inside(array)
-        if outside.any():
-            index = int(np.flatnonzero(outside)[0])
-            raise ValueError(self._outside(f"{name}[{index}]", float(array.flat[index])))
-        return array
-
-    def _outside(self, name: str, value: float) -> str:
-        interval = (
-            ("[" if self.low_inclusive else "(")
-            + f"{self.low:g}, {self.high:g}"
-            + ("]" if self.high_inclusive else ")")
-        )
-        unit = f" {self.unit}" if self.unit else ""
-        return f"{name} must lie in {interval}{unit}; got {value:g}{unit}"
 
 
 #: Every numeric field of a launch and where it must lie; the others are the projectile and

@@ -52,10 +52,10 @@ from ..analyses import mks_improvement
 from ..analyses.harp import apogees
 from ..engines import calibrated_mks, catalogue, eci, flight_grid, mks, mks_improved
 from ..foundation import earth
-from ..foundation.validation import ModelValidityWarning
+from ..foundation.validation import Bounds, ModelValidityWarning
 from ..models.atmosphere import ATMOSPHERE_NAMES, SEA_LEVEL_DENSITY_KG_M3
 from ..models.drag import ExponentialDragLaw
-from ..models.launch import BOUNDS, HP_CHAPTER_2, LP_CHAPTER_2, Bounds, Launch, baseline_chapter_4
+from ..models.launch import BOUNDS, HP_CHAPTER_2, LP_CHAPTER_2, Launch, baseline_chapter_4
 from ..models.projectiles import BASELINE, HP, LP, Projectile
 from ..models.sites import get_site
 from ..models.trajectory import launch_frame, rotate_about_axis, surface_ranges
