@@ -1048,9 +1048,9 @@ def simulate_mks(
     Returns
     -------
     pandas.DataFrame
-        The trajectory table of :mod:`harp_analysis.models.trajectory`, one row per output
-        time in SI units, with the shared metadata in ``frame.attrs`` (apogee, range, time of
-        flight, why the flight stopped, the work it took).
+        The MKS's flight as the engines' trajectory table
+        (:mod:`harp_analysis.models.trajectory`), ``n_points`` rows in equal steps of angular
+        range, with what every engine records in ``frame.attrs``.
     """
     count = whole_number(n_points, "n_points", low=2, high=MAX_ROWS)
     if not isinstance(launch, Launch):

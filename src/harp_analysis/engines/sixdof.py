@@ -416,9 +416,9 @@ def simulate_6dof(
     Returns
     -------
     pandas.DataFrame
-        The trajectory table of :mod:`harp_analysis.models.trajectory`, one row per output
-        time in SI units, with the shared metadata in ``frame.attrs`` (apogee, range, time of
-        flight, why the flight stopped, the work it took).
+        The 6DOF's flight as the engines' trajectory table
+        (:mod:`harp_analysis.models.trajectory`), rows ``output_step_s`` apart, with what every
+        engine records in ``frame.attrs``.
     """
     model = rigid_body_launch(launch, "6DOF", density_altitude)
     projectile = launch.projectile

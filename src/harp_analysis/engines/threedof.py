@@ -951,9 +951,9 @@ def simulate_3dof(
     Returns
     -------
     pandas.DataFrame
-        The trajectory table of :mod:`harp_analysis.models.trajectory`, one row per output
-        time in SI units, with the shared metadata in ``frame.attrs`` (apogee, range, time of
-        flight, why the flight stopped, the work it took).
+        The 3DOF's flight as the engines' trajectory table
+        (:mod:`harp_analysis.models.trajectory`), a row every ``output_step_s``; its
+        ``frame.attrs`` hold what every engine records and the integrator's work.
     """
     if not isinstance(launch, Launch):
         raise TypeError(
