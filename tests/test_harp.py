@@ -1,6 +1,7 @@
 """Appendices D and E row by row: the recovered muzzle speeds, the derived columns the
 dissertation model recomputes, the drag areas and speeds of sound behind them."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -193,3 +194,18 @@ def test_a_round_is_fired_from_its_sites_gun_with_its_own_mass_drag_and_air(site
         for density in (None, 1.0)
     )
     assert thinner.beta == pytest.approx(standard.beta / launch_site.surface_density_kg_m3)
+
+
+def test_a_site_given_as_an_object_is_the_one_flown():
+    """A site is resolved once, at the door, and passed on as itself: Barbados' gun in thinner
+    air (its rounds and files still Barbados') flies every round higher, as a lower beta
+    (eq 6.11's rho0) must; were the name looked up again further down, nothing would change."""
+    barbados = get_site("barbados")
+    assert get_site(barbados) is barbados and barbados.key == "barbados"
+    thinner = dataclasses.replace(barbados, surface_density_kg_m3=1.0)
+    standard, higher = (
+        apogees.predicted_apogees(site, "consistent") for site in (barbados, thinner)
+    )
+    assert higher.round_number.equals(standard.round_number)
+    assert (higher.predicted_apogee_m > standard.predicted_apogee_m).all()
+    assert apogees.predicted_apogees("Barbados", "consistent").equals(standard)

@@ -22,6 +22,11 @@ class LaunchSite:
     elevation_rad: float
     source: str
 
+    @property
+    def key(self) -> str:
+        """The lower-case name that keys the site's files and tables ("barbados", "yuma")."""
+        return self.name.lower()
+
 
 def dms_to_deg(degrees: float, minutes: float, seconds: float) -> float:
     """Degrees, minutes, seconds to decimal degrees; the sign of ``degrees`` applies to all."""
@@ -60,18 +65,21 @@ YUMA = LaunchSite(
 _SITES = {site.name.lower(): site for site in (BARBADOS, YUMA)}
 
 
-def get_site(site: str) -> LaunchSite:
-    """Return the site called ``site`` ("barbados" or "yuma", any case); else ``ValueError``.
+def get_site(site: str | LaunchSite) -> LaunchSite:
+    """The site ``site`` names ("barbados" or "yuma", any case), or ``site`` itself if it is a
+    :class:`LaunchSite`: public functions resolve a name once here and pass the site on.
 
     Parameters
     ----------
-    site : str
-        ``"barbados"`` or ``"yuma"``, any case.
+    site : str or LaunchSite
+        ``"barbados"`` or ``"yuma"``, any case, or a site.
 
     Returns
     -------
     LaunchSite
         The gun site: its latitude, elevation, gun bearing and surface air density.
     """
+    if isinstance(site, LaunchSite):
+        return site
     key = site.lower() if isinstance(site, str) else site
     return _SITES[check_choice(key, "site", _SITES)]

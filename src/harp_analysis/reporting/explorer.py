@@ -57,7 +57,7 @@ from ..models.atmosphere import ATMOSPHERE_NAMES, SEA_LEVEL_DENSITY_KG_M3
 from ..models.drag import ExponentialDragLaw
 from ..models.launch import BOUNDS, HP_CHAPTER_2, LP_CHAPTER_2, Launch, baseline_chapter_4
 from ..models.projectiles import BASELINE, HP, LP, Projectile
-from ..models.sites import get_site
+from ..models.sites import BARBADOS, YUMA, LaunchSite
 from ..models.trajectory import launch_frame, rotate_about_axis, surface_ranges
 from .plotting import HOUSE_STYLE, OKABE_ITO, style
 
@@ -223,20 +223,19 @@ def _from_launch(launch: Launch, projectile: str, **extra) -> Settings:
     )
 
 
-def _harp_round(site: str, round_number: int) -> Settings:
+def _harp_round(site: LaunchSite, round_number: int) -> Settings:
     """A HARP round as Chapter 6 flies it: the Martlet of the round's mass and muzzle speed at
     85 deg on the site's bearing and latitude, the Earth turning, the site's surface density as
     the day's change of the 1.225 kg/m^3 sea-level air."""
-    launch_site = get_site(site)
     rounds = apogees.appendix_rounds(site)
     row = rounds[rounds.round_number == round_number].iloc[0]
-    density_change = launch_site.surface_density_kg_m3 / SEA_LEVEL_DENSITY_KG_M3 - 1.0
+    density_change = site.surface_density_kg_m3 / SEA_LEVEL_DENSITY_KG_M3 - 1.0
     return Settings(
         projectile="Martlet",
         speed_m_s=float(row.muzzle_speed_m_s),
-        elevation_deg=math.degrees(launch_site.elevation_rad),
-        bearing_deg=math.degrees(launch_site.gun_bearing_rad),
-        latitude_deg=math.degrees(launch_site.latitude_rad),
+        elevation_deg=math.degrees(site.elevation_rad),
+        bearing_deg=math.degrees(site.gun_bearing_rad),
+        latitude_deg=math.degrees(site.latitude_rad),
         rotating=True,
         density_change_percent=100.0 * density_change,
         mass_kg=float(row.mass_kg),
@@ -255,10 +254,10 @@ def presets() -> dict[str, Settings]:
         cases[f"Chapter 4 B: baseline, {elevation:g} deg"] = _from_launch(
             baseline_chapter_4(elevation), "baseline"
         )
-    for site in ("barbados", "yuma"):
+    for site in (BARBADOS, YUMA):
         rounds = apogees.appendix_rounds(site)
         for number in rounds.round_number[~rounds.duplicate_of_earlier_row]:
-            name = f"HARP {get_site(site).name}: round {number}"
+            name = f"HARP {site.name}: round {number}"
             cases[name] = _harp_round(site, int(number))
     return cases
 

@@ -50,7 +50,7 @@ from ...models.atmosphere import SOUND_SQUARED_PER_KELVIN
 from ...models.drag import ExponentialDragLaw
 from ...models.launch import Launch, Launches
 from ...models.projectiles import Projectile
-from ...models.sites import get_site
+from ...models.sites import LaunchSite, get_site
 from .appendices import FOOT_M, MUZZLE_SPEEDS_FILE, HarpDataError, load_appendix, load_muzzle_speeds
 
 __all__ = [
@@ -98,20 +98,22 @@ _TOLERANCE_KM = 0.02  # the Cd0 A interval of Appendix E's Error column: every r
 
 
 @overload
-def gun_launch(site: str, projectile: Projectile, speed_m_s: float) -> Launch: ...
+def gun_launch(site: str | LaunchSite, projectile: Projectile, speed_m_s: float) -> Launch: ...
 @overload
-def gun_launch(site: str, projectile: Projectile, speed_m_s: np.ndarray) -> Launches: ...
+def gun_launch(
+    site: str | LaunchSite, projectile: Projectile, speed_m_s: np.ndarray
+) -> Launches: ...
 def gun_launch(site, projectile, speed_m_s):
     """``projectile`` fired at ``speed_m_s`` (m/s; an array: one launch each) from ``site``'s
     gun as Chapter 6 lays it: 85 deg along the gun's bearing from the site's latitude, the
     Earth turning; eqs 2.1-2.2's air (the ECI MKS takes the site's, :func:`round_corrections`)."""
-    launch_site = get_site(site)
+    site = get_site(site)
     laid = Launches(
         projectile,
         speed_m_s,
-        math.degrees(launch_site.elevation_rad),
-        bearing_deg=math.degrees(launch_site.gun_bearing_rad),
-        latitude_deg=math.degrees(launch_site.latitude_rad),
+        math.degrees(site.elevation_rad),
+        bearing_deg=math.degrees(site.gun_bearing_rad),
+        latitude_deg=math.degrees(site.latitude_rad),
         rotation_rate_rad_s=earth.ROTATION_RATE_RAD_S,
     )
     return laid if np.ndim(speed_m_s) else laid[0]
@@ -132,7 +134,7 @@ _MARTLET_BY_NAME = Projectile(
 
 
 def round_corrections(
-    site: str,
+    site: str | LaunchSite,
     speed_m_s,
     mass_kg,
     drag_area_m2,
@@ -143,8 +145,9 @@ def round_corrections(
     rounds fired from ``site``'s gun (:func:`gun_launch`) at ``speed_m_s`` (m/s), each of
     ``mass_kg`` with Cd0 A ``drag_area_m2`` (m^2), in the site's air or at
     ``surface_density_kg_m3``: numbers or 1-D arrays, one per round, broadcasting together."""
+    site = get_site(site)
     if surface_density_kg_m3 is None:
-        surface_density_kg_m3 = get_site(site).surface_density_kg_m3
+        surface_density_kg_m3 = site.surface_density_kg_m3
     speed, mass, area, density = np.broadcast_arrays(
         speed_m_s, mass_kg, drag_area_m2, surface_density_kg_m3
     )
@@ -162,7 +165,7 @@ def _distinct(table):
 
 
 # --- muzzle speeds -------------------------------------------------------------------------------
-def recover_muzzle_speeds(site: str) -> pd.DataFrame:
+def recover_muzzle_speeds(site: str | LaunchSite) -> pd.DataFrame:
     """Each distinct round's muzzle speed, recovered from its printed columns.
 
     Candidates are the whole multiples of :data:`SPEED_STEP_FT_S` inside the printed Vo's rounding
@@ -172,6 +175,7 @@ def recover_muzzle_speeds(site: str) -> pd.DataFrame:
     ``muzzle_speed_m_s``, ``mu_misfit`` (its |mu - printed| in half-units of the last printed
     digit) and ``runner_up_misfit`` (the next candidate's): a kept misfit <= 1 and a runner-up
     > 1 make the speed unique."""
+    site = get_site(site)
     rounds = _distinct(load_appendix(site))
     half_unit = PRINT_HALF_UNITS["misalignment_angle_rad"]
     rows = []
@@ -193,19 +197,19 @@ def recover_muzzle_speeds(site: str) -> pd.DataFrame:
 
 
 @cached_copies
-def _appendix_rounds(site: str) -> pd.DataFrame:
+def _appendix_rounds(site: LaunchSite) -> pd.DataFrame:
     table = load_appendix(site)
     speeds = load_muzzle_speeds(site)
     exact = dict(zip(speeds.round_number, speeds.muzzle_speed_m_s))
     missing = sorted(set(table.round_number) - set(exact))
     if missing:
-        raise ValueError(f"no recovered muzzle speed for {site} rounds {missing}")
+        raise ValueError(f"no recovered muzzle speed for {site.key} rounds {missing}")
     recovered = table.round_number.map(exact)
     wrong = (recovered - table.muzzle_speed_m_s).abs() > _SPEED_HALF_UNIT_M_S * (1 + 1e-9)
     if wrong.any():
         row = table[wrong].iloc[0]
         raise HarpDataError(
-            f"{MUZZLE_SPEEDS_FILE}: {site} round {row.round_number}'s "
+            f"{MUZZLE_SPEEDS_FILE}: {site.key} round {row.round_number}'s "
             f"{recovered[wrong].iloc[0] / FOOT_M:g} ft/s does not round to the "
             f"{row.muzzle_speed_m_s / 1e3:.2f} km/s of the appendix's line {row.source_line} "
             "(a speed in the wrong unit, or another round's?)"
@@ -216,18 +220,21 @@ def _appendix_rounds(site: str) -> pd.DataFrame:
     )
 
 
-def appendix_rounds(site: str) -> pd.DataFrame:
+def appendix_rounds(site: str | LaunchSite) -> pd.DataFrame:
     """The appendix of ``site`` as printed (every row, :func:`appendices.load_appendix`), with
     ``muzzle_speed_m_s`` the recovered exact speed and ``printed_muzzle_speed_m_s`` the printed
     one. A copy: editing it changes nothing else."""
-    return _appendix_rounds(get_site(site).name.lower())
+    return _appendix_rounds(get_site(site))
 
 
 def launch_corrections(
-    site: str, model: str | eci.EciModel = "dissertation", drag_area: float | None = None
+    site: str | LaunchSite,
+    model: str | eci.EciModel = "dissertation",
+    drag_area: float | None = None,
 ) -> eci.LaunchCorrection:
     """The launch correction of every printed row of ``site`` under ``model`` with its own
     Cd0 A (or ``drag_area``)."""
+    site = get_site(site)
     model = eci.get_model(model)
     rounds = appendix_rounds(site)
     area = _check_drag_area(drag_area)
@@ -248,14 +255,14 @@ def _check_drag_area(drag_area) -> float | None:
 
 # --- drag area -----------------------------------------------------------------------------------
 def beta_column_drag_area(
-    site: str, model: str | eci.EciModel = "dissertation"
+    site: str | LaunchSite, model: str | eci.EciModel = "dissertation"
 ) -> tuple[float, float, float]:
     """Cd0 A (m^2) from ``site``'s printed Beta column read as ``model`` reads it: (central,
     lowest, highest value every printed Beta allows). The central value is the middle of that
     interval, so every printed Beta rounds back; when no single Cd0 A does, it is the least-squares
     value and the bounds are NaN."""
+    site, model = get_site(site), eci.get_model(model)
     rounds = _distinct(appendix_rounds(site))
-    model = eci.get_model(model)
     printed = rounds.beta.to_numpy()
 
     def beta_per_area(area):
@@ -378,7 +385,7 @@ def martlet(
     )
 
 
-def speed_of_sound(site: str) -> tuple[float, float, float]:
+def speed_of_sound(site: str | LaunchSite) -> tuple[float, float, float]:
     """The speed of sound a (m/s) behind the Mach column, Mach = Vo/a with the exact speeds:
     (central, lowest, highest a every printed Mach allows). The central value is the middle of
     that interval in 1/a (the least-squares value when the interval is empty): a least-squares
@@ -418,7 +425,9 @@ def _predicted(site, model, drag_area):
 
 
 def predicted_apogees(
-    site: str, model: str | eci.EciModel = "dissertation", drag_area: float | None = None
+    site: str | LaunchSite,
+    model: str | eci.EciModel = "dissertation",
+    drag_area: float | None = None,
 ) -> pd.DataFrame:
     """Measured and predicted apogee (eqs 6.4-6.5) of every printed row of ``site``'s appendix
     (the duplicated Barbados round 181 kept and flagged), residual = measured - predicted, and
@@ -428,8 +437,8 @@ def predicted_apogees(
 
     Parameters
     ----------
-    site : str
-        "barbados" (Appendix D) or "yuma" (Appendix E).
+    site : str or LaunchSite
+        "barbados" (Appendix D) or "yuma" (Appendix E), or the site.
     model : str or EciModel
         The model of the launch corrections: "dissertation", "consistent" or
         "printed_columns" (:data:`eci.MODELS`), or one of your own.
@@ -443,13 +452,14 @@ def predicted_apogees(
         ``predicted_apogee_m``, ``residual_m``, ``duplicate_of_earlier_row`` and, for Yuma,
         ``printed_error_m``.
     """
-    return _predicted(
-        get_site(site).name.lower(), eci.get_model(model), _check_drag_area(drag_area)
-    )
+    return _predicted(get_site(site), eci.get_model(model), _check_drag_area(drag_area))
 
 
 def residual_statistic(
-    site: str, statistic: str = "mean", include_duplicate: bool = True, model: str = "dissertation"
+    site: str | LaunchSite,
+    statistic: str = "mean",
+    include_duplicate: bool = True,
+    model: str = "dissertation",
 ) -> float:
     """Mean, its magnitude ("abs_mean") or sample standard deviation ("std") in km of the
     apogee residuals of ``site`` under ``model``."""
@@ -499,13 +509,14 @@ def drag_transfer_gap() -> float:
 
 
 # --- the appendices' derived columns -------------------------------------------------------------
-def appendix_columns(site: str, model: str = "dissertation") -> pd.DataFrame:
+def appendix_columns(site: str | LaunchSite, model: str = "dissertation") -> pd.DataFrame:
     """The derived columns of Appendix D or E recomputed from each round's mass and exact
     muzzle speed and the site under ``model`` (its own Cd0 A), named as the loaded appendix,
     one row per distinct round in printed order: Mach (with the site's fitted speed of sound),
     mu, V tangent, the corrected elevation, speed and azimuth of Vrel + omega x r0, Beta as the
     model reads the column, Li (eq 6.13 of the corrected velocity) and, for Yuma, Error and
     delta apogee (measured - predicted)."""
+    site = get_site(site)
     rounds = _distinct(appendix_rounds(site))
     launch = launch_corrections(site, model)
     distinct = ~appendix_rounds(site).duplicate_of_earlier_row.to_numpy()
@@ -528,10 +539,11 @@ def appendix_columns(site: str, model: str = "dissertation") -> pd.DataFrame:
     return pd.DataFrame(columns)
 
 
-def column_agreement(site: str, model: str = "dissertation") -> pd.DataFrame:
+def column_agreement(site: str | LaunchSite, model: str = "dissertation") -> pd.DataFrame:
     """Per derived column: the largest |computed - printed| in half-units of the last printed
     digit (<= 1 is within print rounding), the round where it occurs, and how many rounds lie
     within print rounding."""
+    site = get_site(site)
     printed = _distinct(appendix_rounds(site))
     computed = appendix_columns(site, model)
     rows = {}
@@ -559,7 +571,7 @@ __all__ += [
 ]
 
 
-def round_count(site: str, distinct: bool = True) -> int:
+def round_count(site: str | LaunchSite, distinct: bool = True) -> int:
     """Rounds in ``site``'s appendix: distinct round numbers, or every printed row."""
     table = appendix_rounds(site)
     return int(len(_distinct(table)) if distinct else len(table))

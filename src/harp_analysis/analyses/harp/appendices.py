@@ -346,7 +346,7 @@ def _to_si(value: float | int, column: str) -> float | int:
 
 
 def load_appendix(
-    site: str, path: str | Path | None = None, *, verify: bool = True
+    site: str | LaunchSite, path: str | Path | None = None, *, verify: bool = True
 ) -> pd.DataFrame:
     """Appendix D ("barbados") or E ("yuma") as a DataFrame in SI units, rows in printed order.
 
@@ -362,7 +362,7 @@ def load_appendix(
     does). ``verify=False`` skips the checksum, not the other checks.
     """
     launch_site = get_site(site)
-    file_name, columns = _LAYOUTS[launch_site.name.lower()]
+    file_name, columns = _LAYOUTS[launch_site.key]
     packaged = path is None
     path = HARP_DATA_DIR / file_name if path is None else _path(path)
     plausible = dict(PLAUSIBLE_RANGES, corrected_azimuth_deg=_azimuth_bounds(launch_site))
@@ -403,7 +403,7 @@ def load_yuma(*, verify: bool = True) -> pd.DataFrame:
 
 
 def load_muzzle_speeds(
-    site: str, path: str | Path | None = None, *, verify: bool = True
+    site: str | LaunchSite, path: str | Path | None = None, *, verify: bool = True
 ) -> pd.DataFrame:
     """The exact muzzle speeds of ``site``'s rounds recovered from the appendix's columns
     (derived data, ``data/harp/muzzle_speeds.tsv``; method in
@@ -431,9 +431,9 @@ def load_muzzle_speeds(
             )
         )
     frame = pd.DataFrame(rows, columns=["site", "round_number", "speed_ft_s"])
-    frame = frame[frame.site == launch_site.name.lower()].drop(columns="site")
+    frame = frame[frame.site == launch_site.key].drop(columns="site")
     if frame.empty:
-        raise HarpDataError(f"{path}: no rows for site {launch_site.name.lower()!r}")
+        raise HarpDataError(f"{path}: no rows for site {launch_site.key!r}")
     if frame.round_number.duplicated().any():
         raise HarpDataError(f"{path}: a {launch_site.name} round is listed twice")
     frame["muzzle_speed_m_s"] = frame.speed_ft_s * FOOT_M

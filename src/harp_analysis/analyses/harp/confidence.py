@@ -53,7 +53,7 @@ from ...foundation.validation import (
     real_number,
     whole_number,
 )
-from ...models.sites import get_site
+from ...models.sites import LaunchSite, get_site
 from . import apogees
 from .appendices import FOOT_M
 
@@ -159,7 +159,7 @@ def _bootstrap(samples, statistic, confidence, resamples, seed) -> Interval:
 
 # --- the distinct rounds and their predictions ---------------------------------------------------
 @cached_copies
-def _rounds(site: str) -> pd.DataFrame:
+def _rounds(site: str | LaunchSite) -> pd.DataFrame:
     table = apogees.appendix_rounds(site)
     return table[~table.duplicate_of_earlier_row].reset_index(drop=True)
 
@@ -170,14 +170,13 @@ def _apogees_m(
     """Predicted apogees (m) of ``site``'s distinct rounds by the ECI MKS of :mod:`.apogees`,
     with any input replaced (arrays broadcast against the rounds: a (k, 1) ``drag_area_m2``
     gives k rows)."""
-    launch_site, rounds = get_site(site), _rounds(site)
+    site = get_site(site)
+    rounds = _rounds(site)
     arrays = np.broadcast_arrays(
         rounds.muzzle_speed_m_s.to_numpy() if speed_m_s is None else speed_m_s,
         rounds.mass_kg.to_numpy() if mass_kg is None else mass_kg,
         drag_area_m2,
-        launch_site.surface_density_kg_m3
-        if surface_density_kg_m3 is None
-        else surface_density_kg_m3,
+        site.surface_density_kg_m3 if surface_density_kg_m3 is None else surface_density_kg_m3,
     )
     speed, mass, area, density = (np.ravel(array) for array in arrays)
     rounds = apogees.round_corrections(
@@ -187,7 +186,7 @@ def _apogees_m(
     return np.reshape(apogee, arrays[0].shape)
 
 
-def _residuals_m(site: str, model: str) -> np.ndarray:
+def _residuals_m(site: str | LaunchSite, model: str) -> np.ndarray:
     frame = apogees.predicted_apogees(site, model)
     return frame.residual_m[~frame.duplicate_of_earlier_row].to_numpy()
 
@@ -222,7 +221,7 @@ def residual_intervals(
     """Mean and sample standard deviation (rows) of ``site``'s distinct-round apogee residuals
     under ``model``, with their intervals (:func:`mean_interval`, :func:`std_interval`):
     columns ``estimate_m``, ``low_m``, ``high_m``."""
-    residuals = _residuals_m(get_site(site).name.lower(), eci.get_model(model).name)
+    residuals = _residuals_m(site, model)
     rows = {
         "mean": mean_interval(residuals, confidence),
         "std": std_interval(residuals, confidence),
@@ -425,7 +424,7 @@ def coverage_table(
 
 # --- 2. the scatter the known input uncertainties explain ----------------------------------------
 def apogee_sensitivities(
-    site: str,
+    site: str | LaunchSite,
     model: str = "dissertation",
     speed_step_m_s: float = SPEED_RECORD_STEP_M_S / 2,
     mass_step_kg: float = MASS_RECORD_STEP_KG / 2,
@@ -438,10 +437,10 @@ def apogee_sensitivities(
     step, |A(x+h) + A(x-h) - 2 A(x)| / |A(x+h) - A(x-h)|: the second-order change against the
     first, small where a linear propagation holds. The steps default to half the records'
     quantisation step (speed, mass) and 1 % of the density."""
-    site, model = get_site(site).name.lower(), eci.get_model(model).name
+    site, model = get_site(site), eci.get_model(model).name
     rounds = _rounds(site)
     speed, mass = rounds.muzzle_speed_m_s.to_numpy(), rounds.mass_kg.to_numpy()
-    density = get_site(site).surface_density_kg_m3
+    density = site.surface_density_kg_m3
     inputs = {  # name: (step, unit of the slope, the changed input)
         "speed": (
             _positive(speed_step_m_s, "speed_step_m_s"),
@@ -486,7 +485,7 @@ class ScatterBudget:
 
 
 def scatter_budget(
-    site: str,
+    site: str | LaunchSite,
     model: str = "dissertation",
     speed_std_m_s: float = uniform_quantisation_std(SPEED_RECORD_STEP_M_S),
     mass_std_kg: float = uniform_quantisation_std(MASS_RECORD_STEP_KG),
@@ -506,7 +505,7 @@ def scatter_budget(
     scatter implies, not data: the muzzle-speed sd (m/s) alone, or the relative surface-density
     sd alone, that would add the unexplained variance (0 where nothing is left), at the
     observed sd and at its interval's ends."""
-    site, model = get_site(site).name.lower(), eci.get_model(model).name
+    site, model = get_site(site), eci.get_model(model).name
     slopes = apogee_sensitivities(site, model)
     speed_slope2 = np.mean(slopes.speed_m_per_m_s**2)
     density_slope2 = np.mean(slopes.density_m_per_relative**2)
@@ -524,7 +523,7 @@ def scatter_budget(
         *(explained / s**2 for s in (observed.estimate, observed.high, observed.low))
     )
     return ScatterBudget(
-        site,
+        site.key,
         observed,
         math.sqrt(explained),
         fraction,
@@ -565,7 +564,7 @@ def surface_densities_kg_m3(densities: str = "site", anchor: str = "barbados") -
     or (``"temperature"``) ``anchor``'s with the other site's at the same surface pressure and
     its own Mach-column temperature, rho = rho_anchor T_anchor / T (module docstring)."""
     check_choice(densities, "densities", ("site", "temperature"))
-    anchor = get_site(anchor).name.lower()
+    anchor = get_site(anchor).key
     values = {site: get_site(site).surface_density_kg_m3 for site in SITES}
     if densities == "site":
         return values
@@ -577,7 +576,7 @@ def surface_densities_kg_m3(densities: str = "site", anchor: str = "barbados") -
 
 def _site_names(sites: str | Iterable[str]) -> tuple[str, ...]:
     names = (sites,) if isinstance(sites, str) else tuple(sites)
-    names = tuple(get_site(site).name.lower() for site in names)
+    names = tuple(get_site(site).key for site in names)
     if not names or len(set(names)) != len(names):
         raise ValueError(f"sites must name one or both sites once each; got {sites!r}")
     return names

@@ -45,7 +45,7 @@ from ...engines import eci
 from ...foundation import earth
 from ...foundation.paths import HARP_DATA_DIR
 from ...foundation.validation import whole_number
-from ...models.sites import get_site
+from ...models.sites import LaunchSite, get_site
 from ...models.trajectory import launch_frame, rotate_about_axis
 from . import apogees
 from .appendices import HarpDataError
@@ -70,12 +70,12 @@ TEXT_SPLASH_RANGES_KM = {181: {"text's MKS": 39.6, "observed splash": 41.1}}
 _KM = 1e3
 
 
-def round_row(site: str, round_number: int):
+def round_row(site: str | LaunchSite, round_number: int):
     """The site, the round's number and its row of the appendix (:func:`apogees.appendix_rounds`);
     a ValueError naming the round if the site's table has no such round."""
     launch_site = get_site(site)
     number = whole_number(round_number, "round_number", low=1)
-    table = apogees.appendix_rounds(launch_site.name)
+    table = apogees.appendix_rounds(launch_site)
     rows = table[table.round_number == number]
     if rows.empty:
         raise ValueError(f"round {number} is not in the {launch_site.name} apogee table")
@@ -83,7 +83,7 @@ def round_row(site: str, round_number: int):
 
 
 def round_trajectory(
-    site: str,
+    site: str | LaunchSite,
     round_number: int,
     n_points: int = 400,
     *,
@@ -103,7 +103,7 @@ def round_trajectory(
     name = eci.get_model(model).name
     area = apogees.drag_area_m2(model) if drag_area_m2 is None else drag_area_m2
     speed = float(row.muzzle_speed_m_s)
-    launch = apogees.gun_launch(site, apogees.martlet(row.mass_kg, speed, name, area), speed)
+    launch = apogees.gun_launch(launch_site, apogees.martlet(row.mass_kg, speed, name, area), speed)
     flight = eci.simulate_eci_mks(
         launch,
         model=model,
@@ -133,7 +133,7 @@ def round_trajectory(
 
 
 def splash_range_km(
-    site: str = "barbados",
+    site: str | LaunchSite = "barbados",
     round_number: int = 181,
     model: str | eci.EciModel = "dissertation",
     drag_area_m2: float | None = None,
@@ -163,7 +163,7 @@ def splash_error(
 
 # --- radar tracks --------------------------------------------------------------------------------
 def _radar_path(site, round_number):
-    return RADAR_DIR / f"{get_site(site).name.lower()}_round_{round_number}.csv"
+    return RADAR_DIR / f"{get_site(site).key}_round_{round_number}.csv"
 
 
 def _radar_field(text, column, where):
@@ -223,7 +223,7 @@ def _read_radar(path: Path) -> pd.DataFrame:
     return frame
 
 
-def load_radar_track(site: str, round_number: int) -> pd.DataFrame | None:
+def load_radar_track(site: str | LaunchSite, round_number: int) -> pd.DataFrame | None:
     """The radar track of ``round_number`` from ``site`` in SI (``time_s``, ``altitude_m``,
     ``range_m``, ``radar``, ``source_line``; the file's comments in ``attrs["provenance"]``),
     or None if ``data/harp/radar`` has no file for it. HarpDataError names the file, line and
