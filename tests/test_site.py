@@ -15,7 +15,7 @@ import pytest
 
 import harp_analysis
 from harp_analysis.foundation import paths
-from harp_analysis.reporting import ledger, registry, site
+from harp_analysis.reporting import ledger, link_check, registry, site
 
 
 def _rows() -> list[site.LedgerRow]:
@@ -279,7 +279,7 @@ def test_a_sound_site_passes(tmp_path):
     _write(tmp_path, "page.html", page + '<link rel="stylesheet" href="s.css">')
     _write(tmp_path, "img/a.png", "png")
     _write(tmp_path, "s.css", "body { background: url('img/a.png'); }")
-    assert site.check_site(tmp_path) == []
+    assert link_check.check_site(tmp_path) == []
 
 
 def test_broken_links_missing_images_and_outside_resources_are_reported(tmp_path):
@@ -288,7 +288,7 @@ def test_broken_links_missing_images_and_outside_resources_are_reported(tmp_path
            '<link rel="stylesheet" href="s.css">')  # fmt: skip
     _write(tmp_path, "page.html", "<p id='here'></p>")
     _write(tmp_path, "s.css", "@import 'https://fonts.example/f.css'; a { b: url(none.woff2) }")
-    problems = "\n".join(site.check_site(tmp_path))
+    problems = "\n".join(link_check.check_site(tmp_path))
     for expected in (
         "'gone.html' reaches no file",
         "no element id='nowhere'",

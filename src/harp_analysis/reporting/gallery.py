@@ -38,9 +38,11 @@ __all__ = [
     "readme_headline",
     "render_readme_headline",
     "README_MARKERS",
+    "SHOWN",
 ]
 
-_SHOWN = {
+#: The statuses as the gallery shows them.
+SHOWN = {
     "reproduced": "reproduced",
     "deviates": "drawn, deviates",
     "partial": "partial",
@@ -127,7 +129,7 @@ def _line(entry: RegistryEntry, tied: list[ClaimResult], measured: list[Measured
         reason = f"{reason} No ledger row: {entry.no_number}".strip()
     return (
         f"| {entry.label} | {entry.title} | {entry.figure_class} | "
-        f"{_SHOWN[entry.status]} | {notebook} | {_cell(reason)} |"
+        f"{SHOWN[entry.status]} | {notebook} | {_cell(reason)} |"
     )
 
 
@@ -155,7 +157,7 @@ def render_gallery(target: Path | None = None) -> Path:
         "hand. A figure is *reproduced* when every number the text states about it reproduces "
         "([CLAIMS.md](CLAIMS.md)); *drawn, deviates* when one does not, with the rows linked.",
         "",
-        ", ".join(f"{n} {_SHOWN[status]}" for status, n in counts.items())
+        ", ".join(f"{n} {SHOWN[status]}" for status, n in counts.items())
         + f" ({len(entries)} in all).",
         "",
         *_TABLE_HEAD,
@@ -206,7 +208,7 @@ def _drawn(
             "",
             f"*{caption_text(e)}*" if e.caption else "",
             "",
-            f"Status: {_SHOWN[e.status]}. Drawn by `notebooks/{e.notebook}`."
+            f"Status: {SHOWN[e.status]}. Drawn by `notebooks/{e.notebook}`."
             + (f" Ledger rows: {rows}." if rows else "")
             + (f" {exempted}" if exempted else "")
             + (f" Extension results: {results}." if results else ""),
