@@ -40,12 +40,16 @@ class _Page(HTMLParser):
         self.ids.update(values[name] for name in named if name in values)
         if tag == "a" and "href" in values:
             self.links.append(values["href"])
-        loads = _RESOURCE_ATTRIBUTE.get(tag, "")
-        if loads in values:
-            self.resources.append((tag, values[loads]))
-        srcset = values.get("srcset")
-        if srcset:  # "a.png 1x, b.png 2x": each candidate's url
-            self.resources += [(tag, part.split()[0]) for part in srcset.split(",")]
+        self.resources += [(tag, url) for url in _loaded(tag, values)]
+
+
+def _loaded(tag: str, values: dict[str, str]) -> list[str]:
+    """The urls an element ``tag`` with attributes ``values`` loads: its
+    :data:`_RESOURCE_ATTRIBUTE`, then each candidate of its ``srcset`` ("a.png 1x, b.png 2x")."""
+    loads = _RESOURCE_ATTRIBUTE.get(tag, "")
+    urls = [values[loads]] if loads in values else []
+    srcset = values.get("srcset")
+    return urls + ([part.split()[0] for part in srcset.split(",")] if srcset else [])
 
 
 def _external(url: str) -> bool:

@@ -404,6 +404,34 @@ def _data_files() -> list[Path]:
     return [*sorted(harp.glob("*.tsv")), harp / "SHA256SUMS"]
 
 
+def _tied(rows: list[LedgerRow]) -> dict[str, list[LedgerRow]]:
+    """The rows of ``rows`` about each figure, by its number."""
+    tied: dict[str, list[LedgerRow]] = {}
+    for row in rows:
+        for number in row.figures:
+            tied.setdefault(number, []).append(row)
+    return tied
+
+
+def _shared_context(
+    rows: list[LedgerRow], chapter_pages: dict[str, str], entries: list[RegistryEntry]
+) -> dict[str, Any]:
+    """What every page's template is given: the registry's ``entries`` (``dissertation`` and
+    ``extensions``, and the ``registry`` by number), the ledger's ``rows`` (``claims``, scored,
+    and ``measured``, the extension results; ``tied``, those about each figure by its number)
+    and the ``chapters`` (each notebook's page)."""
+    return {
+        "entries": entries,
+        "dissertation": [e for e in entries if not e.extension],
+        "extensions": [e for e in entries if e.extension],
+        "registry": {e.number: e for e in entries},
+        "claims": [row for row in rows if row.kind == "claim"],
+        "measured": [row for row in rows if row.kind == "extension"],
+        "tied": _tied(rows),
+        "chapters": chapter_pages,
+    }
+
+
 def _pages(
     rows: list[LedgerRow],
     chapter_pages: dict[str, str],
@@ -411,25 +439,13 @@ def _pages(
     entries: list[RegistryEntry],
 ) -> dict[str, str]:
     """Each generated page's text by its name in the source tree, rendered from
-    :data:`TEMPLATES`; each template is given the registry and the ledger, grouped as below."""
+    :data:`TEMPLATES`, each given :func:`_shared_context` and what it alone shows."""
     import harp_analysis
 
     from ..analyses.error_budget import CHAPTER_7B
 
-    tied: dict[str, list[LedgerRow]] = {}
-    for row in rows:
-        for number in row.figures:
-            tied.setdefault(number, []).append(row)
-    shared = {
-        "entries": entries,
-        "dissertation": [e for e in entries if not e.extension],
-        "extensions": [e for e in entries if e.extension],
-        "registry": {e.number: e for e in entries},
-        "claims": [row for row in rows if row.kind == "claim"],
-        "measured": [row for row in rows if row.kind == "extension"],
-        "tied": tied,
-        "chapters": chapter_pages,
-    }
+    shared = _shared_context(rows, chapter_pages, entries)
+    tied = shared["tied"]
     environment = _pages_environment()
 
     def render(template: str, **context: Any) -> str:
@@ -541,6 +557,44 @@ def _figures_for_site(target: Path, cache: Path) -> None:
             )
 
 
+def _copy_hand_written(docs: Path, target: Path) -> None:
+    """The hand-written pages of ``docs`` (not its configuration, :data:`_CONFIGURATION`) and
+    the root files a page includes (CHANGELOG.md, CITATION.cff), copied into ``target``."""
+    for path in sorted(docs.rglob("*")):
+        relative = path.relative_to(docs)
+        if path.is_file() and not _CONFIGURATION & set(relative.parts):
+            _copy_if_changed(path, target / relative)
+    for name in ("CHANGELOG.md", "CITATION.cff"):
+        _copy_if_changed(paths.ROOT / name, target / "_root" / name)
+
+
+def _notebooks_and_ledger(
+    notebooks: list[Path], cache: Path, execute: bool, jobs: int
+) -> tuple[dict[Path, Path], list[LedgerRow]]:
+    """Each notebook as executed (:func:`run_notebooks`; as it is unless ``execute``) and the
+    evaluated ledger: the ledger in this process while the notebooks run in their kernels."""
+    start = time.perf_counter()
+    with ThreadPoolExecutor(max_workers=1) as background:
+        running = background.submit(run_notebooks, notebooks, cache, jobs) if execute else None
+        rows = evaluated_ledger(cache)
+        executed = running.result() if running else {path: path for path in notebooks}
+    print(f"{time.perf_counter() - start:6.1f} s  notebooks and ledger", flush=True)
+    return executed, rows
+
+
+def _chapters_for_site(target: Path, executed: dict[Path, Path]) -> dict[str, str]:
+    """The notebooks of ``executed`` (each notebook: its executed copy) as the chapters' pages
+    of ``target``, any other left from an earlier build (renamed or removed) taken out: each
+    notebook's name mapped to its page's."""
+    chapters = target / "chapters"
+    for notebook, run in executed.items():
+        _copy_if_changed(run, chapters / notebook.name)
+    for stale in chapters.glob("*.ipynb"):
+        if stale.name not in {notebook.name for notebook in executed}:
+            stale.unlink()
+    return {notebook.name: f"/chapters/{notebook.stem}" for notebook in executed}
+
+
 def assemble(
     target: Path,
     docs: Path | None = None,
@@ -553,38 +607,19 @@ def assemble(
     hand-written pages of ``docs``, the chapter notebooks (run once and cached if ``execute``),
     the committed figures, the root files a page includes (CHANGELOG.md, CITATION.cff) and the
     generated pages."""
-    docs = Path(docs) if docs else paths.ROOT / "docs"
     cache = Path(cache) if cache else target.parent / "cache"
     cache.mkdir(parents=True, exist_ok=True)
-    for path in sorted(docs.rglob("*")):
-        relative = path.relative_to(docs)
-        if path.is_file() and not _CONFIGURATION & set(relative.parts):
-            _copy_if_changed(path, target / relative)
-    for name in ("CHANGELOG.md", "CITATION.cff"):
-        _copy_if_changed(paths.ROOT / name, target / "_root" / name)
+    _copy_hand_written(Path(docs) if docs else paths.ROOT / "docs", target)
     _figures_for_site(target, cache / "thumbnails")
     notebooks = [
         path
         for path in sorted(paths.NOTEBOOKS_DIR.glob(CHAPTER_NOTEBOOKS))
         if path.name != EXPLORER_NOTEBOOK
     ]
-    start = time.perf_counter()
-    with ThreadPoolExecutor(max_workers=1) as background:
-        # the ledger in this process while the notebooks run in their kernels
-        running = background.submit(run_notebooks, notebooks, cache, jobs) if execute else None
-        rows = evaluated_ledger(cache)
-        executed = running.result() if running else {path: path for path in notebooks}
-    print(f"{time.perf_counter() - start:6.1f} s  notebooks and ledger", flush=True)
-    chapter_pages = {}
-    for path in notebooks:
-        _copy_if_changed(executed[path], target / "chapters" / path.name)
-        chapter_pages[path.name] = f"/chapters/{path.stem}"
+    executed, rows = _notebooks_and_ledger(notebooks, cache, execute, jobs)
+    chapter_pages = _chapters_for_site(target, executed)
     results = None if benchmarks == "off" else run_benchmarks(cache, benchmarks)
     write_pages(target, rows, chapter_pages, results, quoted_registry(cache))
-    expected = {target / "chapters" / path.name for path in notebooks}
-    for stale in (target / "chapters").glob("*.ipynb"):  # a notebook renamed or removed
-        if stale not in expected:
-            stale.unlink()
 
 
 # --- command line -----------------------------------------------------------------------------
