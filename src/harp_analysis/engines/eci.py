@@ -674,10 +674,25 @@ def correction_for_launch(
     :meth:`LaunchCorrection.solution` is its MKS. The ECI MKS is drag-only: a wind is ignored
     with a warning; it launches from the Earth's surface (r0 = R).
 
-    ``mass_kg``, ``drag_area_m2`` (Cd0 A, m^2) and ``surface_density_kg_m3`` (rho0 at the gun)
-    replace what the launch's projectile and air give, each a number or an array broadcasting
-    with the launches: the rounds of one gun whose masses, drag or air differ (HARP's rounds,
-    each with its own mass; a drag area being fitted; a site's measured air)."""
+    Parameters
+    ----------
+    launch : Launch or Launches
+        The launch, or launches sharing one Earth rotation.
+    model : str or EciModel
+        How the corrections read the text: "consistent" (the default), "dissertation" or
+        "printed_columns" (:data:`MODELS`), or a model of your own.
+    mass_kg, drag_area_m2, surface_density_kg_m3 : float or array, optional
+        Mass (kg), Cd0 A (m^2) and rho0 at the gun (kg/m^3) in place of what the launch's
+        projectile and air give, each a number or an array broadcasting with the launches: the
+        rounds of one gun whose masses, drag or air differ (HARP's rounds, each with its own
+        mass; a drag area being fitted; a site's measured air). Only these are checked.
+
+    Returns
+    -------
+    LaunchCorrection
+        The corrected launch of each launch (eqs 5.1-5.8) and its MKS constants (eqs 6.11-6.16),
+        arrays for Launches.
+    """
     if not isinstance(launch, Launch | Launches):
         raise TypeError(f"launch must be a Launch or Launches; got {type(launch).__name__}")
     model = get_model(model)
