@@ -17,7 +17,7 @@ flights, :mod:`harp_analysis.engines.calibrated_mks`), which lands tens of metre
 
 The rest of Chapter 7 A lives beside it: :mod:`.verification` flies the 3DOF at a solution and
 refines it by shooting, :mod:`.intercepts` meets ballistic targets and raids, and
-:mod:`.costs` counts and times both against the text's claims.
+:mod:`.studies.costs` counts and times both against the text's claims.
 
 SI inside (m, s, rad); degrees only in the arguments and fields named ``_deg``.
 """

@@ -25,11 +25,11 @@ from functools import cache
 import numpy as np
 import pandas as pd
 
-from ...foundation import earth
-from ...foundation.validation import check_choice, check_range, real_number
-from ...models.launch import Launch
-from .envelope import three_dof_misses
-from .firing import (
+from ....foundation import earth
+from ....foundation.validation import check_choice, check_range, real_number
+from ....models.launch import Launch
+from ..envelope import three_dof_misses
+from ..firing import (
     BARBADOS_HP,
     BRANCHES,
     MODELS,
@@ -38,9 +38,9 @@ from .firing import (
     destination,
     great_circle,
 )
-from .firing import firing_solutions as solve
-from .intercepts import raid, raid_roots, raid_windows
-from .verification import verify_with_3dof
+from ..firing import firing_solutions as solve
+from ..intercepts import raid, raid_roots, raid_windows
+from ..verification import verify_with_3dof
 
 __all__ = [
     "DOWNRANGES_M",

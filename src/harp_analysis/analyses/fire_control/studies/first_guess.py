@@ -39,15 +39,15 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
 
-from ...engines import mks_improved
-from ...foundation import earth
-from ...foundation.validation import ModelValidityWarning, check_choice, check_range, real_number
-from ...models.launch import Launch
-from ...models.sites import YUMA
-from ...models.trajectory import rotate_about_axis
-from . import firing
-from .firing import FiringSolution, TargetPoint
-from .verification import verify_with_3dof
+from ....engines import mks_improved
+from ....foundation import earth
+from ....foundation.validation import ModelValidityWarning, check_choice, check_range, real_number
+from ....models.launch import Launch
+from ....models.sites import YUMA
+from ....models.trajectory import rotate_about_axis
+from .. import firing
+from ..firing import FiringSolution, TargetPoint
+from ..verification import verify_with_3dof
 
 __all__ = [
     "MODELS",
