@@ -414,40 +414,44 @@ def _rows(site: str, gun: Launch, entries: list, checks: dict, per_flight: dict)
     return rows
 
 
+#: A model's columns of :func:`compare_first_guesses` from its solution and from the solution's
+#: 3DOF check: (column, the attribute it holds, its value where there is none).
+_SOLUTION_COLUMNS = (
+    ("elevation_deg", "elevation_deg", math.nan),
+    ("aim_bearing_deg", "bearing_deg", math.nan),
+    ("model_miss_m", "miss_m", math.nan),
+    ("model_solves", "mks_solves", 0),
+)
+_CHECK_COLUMNS = (
+    ("first_guess_miss_m", "mks_miss_m", math.nan),
+    ("flights", "flights", 0),
+    ("converged", "converged", False),
+    ("miss_m", "miss_m", math.nan),
+    ("refined_elevation_deg", "elevation_deg", math.nan),
+    ("refined_bearing_deg", "bearing_deg", math.nan),
+)
+
+
 def _row(solution, model_time: float, check, check_time: float) -> dict:
     """One model's columns of a row of :func:`compare_first_guesses`: its ``solution`` (None
     where it found none), timed ``model_time`` (s), and that solution's 3DOF ``check`` (None
     where there is none), at ``check_time`` (s) a flight."""
-    nan = math.nan
-    row = dict(elevation_deg=nan, aim_bearing_deg=nan, model_miss_m=nan, model_solves=0)
-    if solution is not None:
-        row.update(
-            elevation_deg=solution.elevation_deg,
-            aim_bearing_deg=solution.bearing_deg,
-            model_miss_m=solution.miss_m,
-            model_solves=solution.mks_solves,
+    return (
+        _columns(solution, _SOLUTION_COLUMNS)
+        | _columns(check, _CHECK_COLUMNS)
+        | dict(
+            model_time_s=model_time,
+            refine_time_s=0.0 if check is None else check.flights * check_time,
         )
-    row.update(
-        model_time_s=model_time,
-        first_guess_miss_m=nan,
-        flights=0,
-        converged=False,
-        miss_m=nan,
-        refined_elevation_deg=nan,
-        refined_bearing_deg=nan,
-        refine_time_s=0.0,
     )
-    if check is not None:
-        row.update(
-            first_guess_miss_m=check.mks_miss_m,
-            flights=check.flights,
-            converged=check.converged,
-            miss_m=check.miss_m,
-            refined_elevation_deg=check.elevation_deg,
-            refined_bearing_deg=check.bearing_deg,
-            refine_time_s=check.flights * check_time,
-        )
-    return row
+
+
+def _columns(item, columns) -> dict:
+    """``columns`` (column, attribute, default) of ``item``, their defaults where it is None."""
+    return {
+        name: default if item is None else getattr(item, attribute)
+        for name, attribute, default in columns
+    }
 
 
 def compare_first_guesses(
