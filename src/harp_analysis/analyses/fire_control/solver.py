@@ -170,7 +170,9 @@ def _shot(gun, flags, elevation, bearing, target, work):
     return OK, excess, east, north, time, beta, apogee_altitude
 
 
-@jit
+# _apogee, _branch and _landing are inlined: they run at every shot, where a call passing
+# arrays would cost its reference counts
+@jit(inline=True)
 def _apogee(work):
     """The MKS constants of the launch in ``work``'s arguments and its apogee (polar angle and
     altitude, into its angles): :data:`OK`, :data:`ESCAPES` or :data:`NOT_USABLE`."""
@@ -184,7 +186,7 @@ def _apogee(work):
     return OK
 
 
-@jit
+@jit(inline=True)
 def _branch(work, target):
     """The polar angles bounding the target's branch of the trajectory of :func:`_apogee`
     (apogee to impact descending, launch to apogee ascending; NaN where the impact is not
@@ -197,7 +199,7 @@ def _branch(work, target):
     return angles[0], angles[2], 1.0
 
 
-@jit
+@jit(inline=True)
 def _landing(gun, velocity, u, theta, time, target):
     """The along-track excess (rad) and the east and north miss (m) of the crossing at polar
     angle ``theta`` (``u`` its 1/r) reached at ``time``, the shot launched at ``velocity``:
