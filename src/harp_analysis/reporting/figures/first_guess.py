@@ -1,5 +1,5 @@
-"""The first-guess figure (issue 24 item 4): reporting on :mod:`.first_guess`'s comparison of
-the ECI MKS and the improved MKS as the fire-control solver's model."""
+"""The first-guess figure (issue 24 item 4): reporting on :mod:`.studies.first_guess`'s
+comparison of the ECI MKS and the improved MKS as the fire-control solver's model."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import MaxNLocator
 
-from ...analyses.fire_control.first_guess import COLUMNS, MODELS, ROOTS
+from ...analyses.fire_control.studies.first_guess import COLUMNS, MODELS, ROOTS
 from ..plotting import ENGINE_STYLES, FULL_WIDTH_IN, OKABE_ITO, new_figure
 
 __all__ = ["MODEL_NAMES", "draw_first_guess_comparison"]
@@ -44,7 +44,7 @@ def _title(frame: pd.DataFrame) -> str:
 
 
 def draw_first_guess_comparison(frame: pd.DataFrame) -> Figure:
-    """Two panels of :func:`.first_guess.compare_first_guesses`'s ``frame``, over the
+    """Two panels of :func:`.studies.first_guess.compare_first_guesses`'s ``frame``, over the
     point-roots where both models have a root: left, the empirical distribution of the 3DOF's
     miss at each model's first guess (log scale; a line per model, its marker the root; a shot
     that never reaches the target's altitude keeps its curve below 1);

@@ -18,13 +18,13 @@ from functools import cache
 import numpy as np
 from scipy import optimize
 
-from ...engines import threedof
-from ...foundation import earth
-from ...foundation.validation import check_choice
-from ...models.launch import Launch
-from ...models.trajectory import EndAltitudeNotCrossedWarning
-from .. import effort
-from .firing import (
+from ....engines import threedof
+from ....foundation import earth
+from ....foundation.validation import check_choice
+from ....models.launch import Launch
+from ....models.trajectory import EndAltitudeNotCrossedWarning
+from ... import effort
+from ..firing import (
     BARBADOS_HP,
     BRANCHES,
     TargetPoint,
@@ -35,8 +35,8 @@ from .firing import (
     firing_solutions,
     great_circle,
 )
-from .intercepts import raid, raid_roots, raid_windows
-from .verification import LANDED_M, Verification, verify_with_3dof
+from ..intercepts import raid, raid_roots, raid_windows
+from ..verification import LANDED_M, Verification, verify_with_3dof
 
 __all__ = [
     "shoot_3dof",
