@@ -178,7 +178,7 @@ _SPEED, _ELEVATION, _BETA, _TAU, _RADIUS, _DRIVE, _DECAY = (
 
 def _checked(value, name: str):
     """``value`` as a finite float array inside ``name``'s domain, or a ValueError naming it."""
-    return _DOMAINS[name].check(finite_array(value, name), name)
+    return _DOMAINS[name].finite(value, name)
 
 
 def _argument(value, name: str):

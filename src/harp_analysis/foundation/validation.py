@@ -164,6 +164,11 @@ class Bounds:
             raise ValueError(self.outside(f"{name}[{index}]", float(array.flat[index])))
         return array
 
+    def finite(self, value, name: str) -> np.ndarray:
+        """``value`` as a finite float array (:func:`finite_array`) inside, or a ValueError
+        naming ``name`` (and its first element outside)."""
+        return self.check(finite_array(value, name), name)
+
     def check(self, value: Checked, name: str) -> Checked:
         """``value`` itself, or a ValueError naming ``name`` and its first element outside
         (NaN passes: refusing it is :func:`finite_array`'s job)."""
