@@ -235,6 +235,16 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
     state (6,) at each (the last state for a flight cut off), how it ended (:data:`_AT_END`,
     :data:`_MAX_TIME` or :data:`_GROUND`), the right-hand-side evaluations and accepted steps,
     and, if ``record``, every accepted step: times (k,) and states with accelerations (9, k).
+
+    One function, one loop: the trial step, its error control, the cuts at breakpoints and
+    drag-table nodes, the events and the record share the loop's state (t, y, a, Mach, the
+    next step, the breakpoint last cut short of, apogee and end) and call the right-hand side
+    (:func:`_derivative`, its model codes folded in as constants) from three places. A piece
+    split off that called it would inline it once more (numba types each inlined copy anew,
+    most of a kernel's compilation) or call it through a dispatcher, passing arrays with their
+    reference counting at every stage, and be compiled per pair of models as well
+    (:mod:`.compiled`). What needs no right-hand side is apart already: :mod:`.integrator`'s
+    building blocks, :func:`_apogee_cut`, :func:`_time_across`, :func:`_crosses`.
     """
     end_m, end_sign, ground_m, breakpoints_m, t_max_s, rtol, floor, max_step_s = numerics
     # a flight that never crosses its end level (above its apogee, or one it cannot rise
