@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..foundation import earth
-from ..foundation.validation import Bounds, check_range, finite_array, finite_scalar
+from ..foundation.validation import Bounds, finite_array
 
 __all__ = [
     "BallisticConic",
@@ -60,7 +60,7 @@ def ballistic_conic(
     angle = _RISING.finite(flight_path_angle_rad, "flight_path_angle_rad")
     radius = _RADIUS.finite(radius_m, "radius_m")
     energy = 0.5 * speed**2 - gm_m3_s2 / radius
-    check_range(energy, "speed_m_s (specific energy)", high=0.0, high_inclusive=False)
+    Bounds(high=0.0, high_inclusive=False).check(energy, "speed_m_s (specific energy)")
     semi_major = -gm_m3_s2 / (2 * energy)
     momentum = radius * speed * np.cos(angle)
     eccentricity = np.sqrt(1 + 2 * energy * momentum**2 / gm_m3_s2**2)
@@ -93,14 +93,11 @@ def speed_for_range(
     tan(Theta/2))/r0 with h = r0 V cos(phi), Theta = range/r0: V^2 = GM / (r0 cos^2(phi)
     (1 + tan(phi)/tan(Theta/2))). Flat limit: V^2 = g range / sin(2 phi)."""
     radius = _RADIUS.finite(radius_m, "radius_m")
-    range_angle = check_range(
+    range_angle = Bounds(
+        low=0.0, high=np.pi, low_inclusive=False, high_inclusive=False, unit="rad"
+    ).check(
         finite_array(ground_range_m, "ground_range_m") / radius,
         "ground_range_m / radius_m (the range angle)",
-        low=0.0,
-        low_inclusive=False,
-        high=np.pi,
-        high_inclusive=False,
-        unit="rad",
     )
     angle = Bounds(0.0, np.pi / 2, low_inclusive=False, high_inclusive=False).finite(
         flight_path_angle_rad, "flight_path_angle_rad"
@@ -155,20 +152,11 @@ def conic_from_state(
 ) -> ConicFromState:
     """The drag-free conic through a state at ``radius_m`` with ``speed_m_s`` at
     ``flight_path_angle_rad`` above the local horizontal (any sign), h = r V cos(phi)."""
-    radius = check_range(
-        finite_scalar(radius_m, "radius_m"), "radius_m", low=0.0, low_inclusive=False, unit="m"
-    )
-    speed = check_range(
-        finite_scalar(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0, low_inclusive=False
-    )
-    angle = check_range(
-        finite_scalar(flight_path_angle_rad, "flight_path_angle_rad"),
-        "flight_path_angle_rad",
-        low=-np.pi / 2,
-        low_inclusive=False,
-        high=np.pi / 2,
-        high_inclusive=False,
-    )
+    radius = Bounds(low=0.0, low_inclusive=False, unit="m").scalar(radius_m, "radius_m")
+    speed = Bounds(low=0.0, low_inclusive=False).scalar(speed_m_s, "speed_m_s")
+    angle = Bounds(
+        low=-np.pi / 2, high=np.pi / 2, low_inclusive=False, high_inclusive=False
+    ).scalar(flight_path_angle_rad, "flight_path_angle_rad")
     gm_over_h2 = gm_m3_s2 / (radius * speed * np.cos(angle)) ** 2
     return ConicFromState(
         float(gm_over_h2), float(1 / radius - gm_over_h2), float(-np.tan(angle) / radius)

@@ -69,7 +69,7 @@ from scipy.optimize import brentq
 
 from ..foundation import earth
 from ..foundation.compiled import formula, jit
-from ..foundation.validation import ModelValidityWarning, check_range, finite_array, finite_scalar
+from ..foundation.validation import Bounds, ModelValidityWarning, finite_array
 from ..models import atmosphere, drag
 from ..models.launch import Launch, Launches, baseline_chapter_4
 from ..models.trajectory import launch_frame, rotate_about_axis, surface_ranges
@@ -132,9 +132,7 @@ class Calibration:
     reentry_scale: float = 1.0
 
     def __post_init__(self):
-        value = check_range(
-            finite_scalar(self.reentry_scale, "reentry_scale"), "reentry_scale", low=0.0
-        )
+        value = Bounds(low=0.0).scalar(self.reentry_scale, "reentry_scale")
         object.__setattr__(self, "reentry_scale", value)
 
 

@@ -121,10 +121,9 @@ from ..foundation import earth
 from ..foundation.compiled import formula, jit
 from ..foundation.counting import Counted
 from ..foundation.validation import (
+    Bounds,
     ModelValidityWarning,
     check_choice,
-    check_range,
-    finite_scalar,
     positive_scalar,
 )
 from ..models.atmosphere import get_atmosphere
@@ -935,7 +934,7 @@ def simulate_linear_theory_limit(
     ``frame.attrs`` the shared metadata, the apogee where the radial velocity changes sign (NaN
     if the flight is cut off before it)."""
     model = rigid_body_launch(launch, "linear-theory limit", density_altitude)
-    rtol = check_range(finite_scalar(rtol, "rtol"), "rtol", low=1e-13, high=1e-3)
+    rtol = Bounds(low=1e-13, high=1e-3).scalar(rtol, "rtol")
     max_time = positive_scalar(max_time_s, "max_time_s", "s")
     step = positive_scalar(output_step_s, "output_step_s", "s")
 

@@ -41,7 +41,7 @@ import pandas as pd
 from ..foundation import earth
 from ..foundation.compiled import jit, vector
 from ..foundation.counting import Counted
-from ..foundation.validation import check_range, finite_array, finite_scalar, positive_scalar
+from ..foundation.validation import Bounds, finite_array, positive_scalar
 from ..models.atmosphere import SOUND_SQUARED_PER_KELVIN, air, day_air, get_atmosphere
 from ..models.drag import drag_coefficient
 from ..models.launch import BOUNDS, Launch, Launches
@@ -583,9 +583,7 @@ def _numerics(rtol, max_time_s):
     if type(rtol) is float and type(max_time_s) is float:  # the common case, checked cheaply
         if 0.0 < rtol <= 1e-3 and 0.0 < max_time_s < math.inf:
             return rtol, max_time_s
-    rtol = float(
-        check_range(finite_scalar(rtol, "rtol"), "rtol", low=0.0, low_inclusive=False, high=1e-3)
-    )
+    rtol = float(Bounds(low=0.0, high=1e-3, low_inclusive=False).scalar(rtol, "rtol"))
     max_time_s = float(positive_scalar(max_time_s, "max_time_s", "s"))
     return rtol, max_time_s
 
@@ -755,7 +753,7 @@ def _ends(end_altitude_m, rising, count: int) -> tuple[np.ndarray, np.ndarray]:
     one per flight, as flat arrays; else an error naming the argument."""
     ends = finite_array(end_altitude_m, "end_altitude_m")
     # no ground lies below the lowest site
-    check_range(ends, "end_altitude_m", low=BOUNDS["site_altitude_m"].low, unit="m")
+    Bounds(low=BOUNDS["site_altitude_m"].low, unit="m").check(ends, "end_altitude_m")
     directions = np.asarray(rising)
     if directions.dtype != bool:
         raise TypeError(f"rising must be True, False or an array of them; got {rising!r:.80}")
