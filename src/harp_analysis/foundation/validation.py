@@ -125,8 +125,11 @@ def inside(value, low, high, low_inclusive, high_inclusive):
 @dataclass(frozen=True)
 class Bounds:
     """An interval a number must lie in: the one vocabulary of the package's range checks, on a
-    number (:meth:`number`), an array (:meth:`array`, :meth:`check`) or, through
-    :attr:`limits` and :func:`inside`, in compiled code."""
+    number (:meth:`~harp_analysis.foundation.validation.Bounds.number`), an array
+    (:meth:`~harp_analysis.foundation.validation.Bounds.array`,
+    :meth:`~harp_analysis.foundation.validation.Bounds.check`) or, through
+    :attr:`~harp_analysis.foundation.validation.Bounds.limits` and :func:`inside`, in compiled
+    code."""
 
     low: float = -math.inf
     high: float = math.inf

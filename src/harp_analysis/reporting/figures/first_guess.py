@@ -1,5 +1,6 @@
-"""The first-guess figure (issue 24 item 4): reporting on :mod:`.first_guess`'s comparison of
-the ECI MKS and the improved MKS as the fire-control solver's model."""
+"""The first-guess figure (issue 24 item 4): reporting on
+:mod:`~harp_analysis.analyses.fire_control.first_guess`'s comparison of the ECI MKS and the improved
+MKS as the fire-control solver's model."""
 
 from __future__ import annotations
 
