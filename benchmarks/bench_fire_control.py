@@ -24,7 +24,7 @@ within 1 m of its aim) and a one-by-one solve of a few targets gives the batch's
    MKS's roots moved onto the calibrated MKS's): its one-off calibration (the gun's grid of
    3DOF flights, computed afresh here; ``--smoke`` reads the stored one); on aims drawn at
    random across HP's envelope from Barbados
-   (:func:`fire_control.model_comparison.random_aims`: none calibrated on, ``--smoke`` 60 of
+   (:func:`fire_control.studies.model_comparison.random_aims`: none calibrated on, ``--smoke`` 60 of
    them) the 3DOF's miss at each model's roots, flown once; and the raid above solved by it
    (its MKS time against the ECI MKS's, measured in the same run) and verified from its roots
    (the 3DOF flights a root takes to land within 1 m, against the ECI MKS's roots').
@@ -54,9 +54,9 @@ import numpy as np
 from measure import agree, best_of, verdict
 
 from harp_analysis.analyses import fire_control as fc
-from harp_analysis.analyses.fire_control import model_comparison
-from harp_analysis.analyses.fire_control.costs import shoot_3dof
 from harp_analysis.analyses.fire_control.firing import BARBADOS_HP, MODELS
+from harp_analysis.analyses.fire_control.studies import model_comparison
+from harp_analysis.analyses.fire_control.studies.costs import shoot_3dof
 from harp_analysis.engines import calibrated_mks, threedof
 from harp_analysis.engines.flight_grid import Gun
 from harp_analysis.models.trajectory import EndAltitudeNotCrossedWarning

@@ -130,7 +130,7 @@ _BUILTINS = (
     "ndarray", "Exception", "ValueError", "TypeError", "RuntimeError", "UserWarning",
     "Warning", "NamedTuple", "Enum", "P", "R", "T", "Literal", "Self", "ParamSpec",
     "TypeVar", "Client", "Future", "Lock", "ModuleType",
-    "optional", "array_like", "sequence",  # numpy-style "float, optional", "sequence of int"
+    "optional", "array", "array_like", "sequence",  # numpy-style "float or array, optional"
 )  # fmt: skip
 nitpick_ignore_regex = [
     (

@@ -96,3 +96,14 @@ def test_the_import_graph_has_no_circle():
         if module in reached:
             circles.append(module)
     assert not circles, f"in an import circle: {circles}"
+
+
+def test_fire_control_s_method_imports_none_of_its_studies():
+    """analyses.fire_control.studies holds studies of the method (its costs, first guesses,
+    models compared), which build on it: the method runs without them."""
+    graph = grimp.build_graph("harp_analysis")
+    package = "harp_analysis.analyses.fire_control"
+    studies = {f"{package}.studies", *graph.find_descendants(f"{package}.studies")}
+    method = {package, *graph.find_descendants(package)} - studies
+    reading = sorted(m for m in method if graph.find_modules_directly_imported_by(m) & studies)
+    assert not reading, f"modules of the method importing a study: {reading}"

@@ -27,8 +27,8 @@ IMMUTABLE_RESULTS = {
     "foundation.kernel_digest._digest": "a string",
     "foundation.kernel_digest._toolchain": "a string",
     "reporting.explorer._typical_martlet_mass_kg": "a float",
-    "analyses.fire_control.costs.raid_against_3dof_intercept": "a frozen RaidComparison",
-    "analyses.fire_control.model_comparison.calibrated_fire_control": (
+    "analyses.fire_control.studies.costs.raid_against_3dof_intercept": "a frozen RaidComparison",
+    "analyses.fire_control.studies.model_comparison.calibrated_fire_control": (
         "a frozen CalibratedFireControl of numbers"
     ),
     "analyses.fire_control.verification.clearance": "a float (one branch search's)",

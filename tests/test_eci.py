@@ -9,7 +9,7 @@ import pytest
 
 from harp_analysis.engines import eci, mks
 from harp_analysis.foundation import earth
-from harp_analysis.foundation.validation import ModelValidityWarning
+from harp_analysis.foundation.validation import Bounds, ModelValidityWarning
 from harp_analysis.models.atmosphere import get_atmosphere
 from harp_analysis.models.launch import HP_CHAPTER_2, Launches, baseline_chapter_4
 from harp_analysis.models.projectiles import BASELINE
@@ -261,11 +261,12 @@ def test_a_launch_is_not_checked_again_on_its_way_in(monkeypatch):
     """A Launch's values were checked when it was made: its door checks only what it is given
     beside it (here nothing), while the door for loose arrays checks each."""
 
-    def refuse(*args, **kwargs):
-        raise AssertionError("checked again")
+    class Refusing(Bounds):
+        def check(self, value, name):
+            raise AssertionError("checked again")
 
     launch = baseline_chapter_4(60.0, bearing_deg=109.0, latitude_deg=13.1)
-    monkeypatch.setattr(eci, "check_range", refuse)
+    monkeypatch.setattr(eci, "Bounds", Refusing)
     eci.correction_for_launch(launch)
     with pytest.raises(AssertionError, match="checked again"):
         eci.correction_for_launch(launch, mass_kg=80.0)

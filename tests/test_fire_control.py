@@ -379,7 +379,6 @@ def test_points_from_earth_fixed_positions_are_the_points_that_give_them():
 # --- part 2: Kepler targets and intercepts ------------------------------------------------------
 from scipy.integrate import solve_ivp  # noqa: E402
 
-from harp_analysis.analyses.fire_control.costs import shoot_3dof  # noqa: E402
 from harp_analysis.analyses.fire_control.firing import BARBADOS_HP, barbados_case  # noqa: E402
 from harp_analysis.analyses.fire_control.intercepts import (  # noqa: E402
     KeplerTarget,
@@ -387,6 +386,7 @@ from harp_analysis.analyses.fire_control.intercepts import (  # noqa: E402
     intercept_window,
     raid,
 )
+from harp_analysis.analyses.fire_control.studies.costs import shoot_3dof  # noqa: E402
 from harp_analysis.models.trajectory import rotate_about_axis  # noqa: E402
 
 

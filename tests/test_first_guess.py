@@ -11,8 +11,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from harp_analysis.analyses.fire_control import firing, first_guess
+from harp_analysis.analyses.fire_control import firing
 from harp_analysis.analyses.fire_control.firing import TargetPoint, destination, firing_solutions
+from harp_analysis.analyses.fire_control.studies import first_guess
 from harp_analysis.analyses.fire_control.verification import verify_with_3dof
 from harp_analysis.engines import mks_improved
 from harp_analysis.foundation import earth

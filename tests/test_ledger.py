@@ -503,8 +503,8 @@ _TYPED += [
     ),
     (
         "ch2.3dof_more_efficient_than_6dof",
-        "about 64 times",
-        lambda: f"about {10 ** effort.orders_of_magnitude(method='6DOF', than='3DOF'):.0f} times",
+        "some sixty times",  # 64.4 on one machine, 64.8 on another: not "about 64" or "65"
+        lambda: _some_sixty(10 ** effort.orders_of_magnitude(method="6DOF", than="3DOF")),
     ),
     (
         "ch4.effort.3dof",
@@ -559,6 +559,10 @@ _TYPED += [
         lambda: _off_design_text(chapter4.off_design_error()),
     ),
 ]
+
+
+def _some_sixty(ratio: float) -> str:
+    return "some sixty times" if 55 <= ratio < 70 else f"{ratio:.0f} times"
 
 
 @pytest.mark.parametrize("row, typed, compute", _TYPED, ids=[f"{r}:{t}" for r, t, _ in _TYPED])

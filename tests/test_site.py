@@ -1,8 +1,8 @@
 """The documentation site's generator and checker (harp_analysis.reporting.site, issue 28),
 without Sphinx: the pages it writes from the registry and the ledger (with made-up computed
 values, so no trajectory is flown), the links they make, the check of a built site's links and
-resources, and the cache keys. `make docs` builds the real site; `make check-docs` opens it in a
-browser (tests/browser/test_docs_site.py)."""
+resources (harp_analysis.reporting.link_check), and the cache keys. `make docs` builds the real
+site; `make check-docs` opens it in a browser (tests/browser/test_docs_site.py)."""
 
 import ast
 import importlib
@@ -15,7 +15,7 @@ import pytest
 
 import harp_analysis
 from harp_analysis.foundation import paths
-from harp_analysis.reporting import ledger, registry, site
+from harp_analysis.reporting import ledger, link_check, registry, site
 
 
 def _rows() -> list[site.LedgerRow]:
@@ -279,7 +279,7 @@ def test_a_sound_site_passes(tmp_path):
     _write(tmp_path, "page.html", page + '<link rel="stylesheet" href="s.css">')
     _write(tmp_path, "img/a.png", "png")
     _write(tmp_path, "s.css", "body { background: url('img/a.png'); }")
-    assert site.check_site(tmp_path) == []
+    assert link_check.check_site(tmp_path) == []
 
 
 def test_broken_links_missing_images_and_outside_resources_are_reported(tmp_path):
@@ -288,7 +288,7 @@ def test_broken_links_missing_images_and_outside_resources_are_reported(tmp_path
            '<link rel="stylesheet" href="s.css">')  # fmt: skip
     _write(tmp_path, "page.html", "<p id='here'></p>")
     _write(tmp_path, "s.css", "@import 'https://fonts.example/f.css'; a { b: url(none.woff2) }")
-    problems = "\n".join(site.check_site(tmp_path))
+    problems = "\n".join(link_check.check_site(tmp_path))
     for expected in (
         "'gone.html' reaches no file",
         "no element id='nowhere'",
@@ -298,6 +298,32 @@ def test_broken_links_missing_images_and_outside_resources_are_reported(tmp_path
         "'none.woff2' is missing",
     ):
         assert expected in problems
+
+
+def test_an_anchor_s_name_a_srcset_s_candidates_and_the_theme_s_static_templates(tmp_path):
+    """An anchor's name is a link's target; each candidate of a srcset must be there; the
+    theme's templates Sphinx copies into _static are no pages, never checked."""
+    _write(tmp_path, "index.html", '<a name="top"></a><a href="#top">up</a>'
+           '<img srcset="a.png 1x, b.png 2x">')  # fmt: skip
+    _write(tmp_path, "a.png", "png")
+    _write(tmp_path, "_static/macros.html", '<a href="nowhere.html">x</a>')
+    assert link_check.check_site(tmp_path) == ["index.html: <img> 'b.png' is missing"]
+
+
+def test_the_check_command_fails_on_a_problem(tmp_path, capsys):
+    _write(tmp_path, "index.html", '<a href="gone.html">a</a>')
+    assert site.main(["check", str(tmp_path)]) == 1
+    assert capsys.readouterr().out.endswith("1 pages checked: 1 problems\n")
+    _write(tmp_path, "gone.html", "<p></p>")
+    assert site.main(["check", str(tmp_path)]) == 0
+
+
+def test_the_page_templates_are_never_pages_of_the_site():
+    """The generated pages' templates live in docs/_templates, which the assembled source tree
+    Sphinx reads leaves out."""
+    assert sorted((paths.ROOT / site.TEMPLATES).glob("*.md.j2"))
+    assert site.TEMPLATES.parts[:2] == ("docs", "_templates")
+    assert "_templates" in site._CONFIGURATION
 
 
 def test_the_cache_key_follows_the_files_it_depends_on(tmp_path):

@@ -252,14 +252,9 @@ class _Counter(ast.NodeVisitor):
         text = ast.unparse(iterable)
         if text in self.trips:
             return self.trips[text]
-        if (
-            isinstance(iterable, ast.Call)
-            and getattr(iterable.func, "id", "") == "range"
-            and not iterable.keywords
-            and all(isinstance(a, ast.Constant) for a in iterable.args)
-        ):
-            bounds = [int(a.value) for a in iterable.args if isinstance(a, ast.Constant)]  # type: ignore[arg-type]
-            return len(range(*bounds))
+        trips = _constant_range(iterable)
+        if trips is not None:
+            return trips
         if (
             isinstance(iterable, ast.Name)
             and iterable.id not in self.local_names
@@ -299,6 +294,20 @@ class _Counter(ast.NodeVisitor):
 
     def visit_DictComp(self, node):
         self.comprehension(node, [node.key, node.value])
+
+
+def _constant_range(iterable) -> int | None:
+    """Items of ``range(...)`` of constant arguments (no keywords), or None for any other
+    ``iterable``."""
+    if (
+        isinstance(iterable, ast.Call)
+        and getattr(iterable.func, "id", "") == "range"
+        and not iterable.keywords
+        and all(isinstance(a, ast.Constant) for a in iterable.args)
+    ):
+        bounds = [int(a.value) for a in iterable.args if isinstance(a, ast.Constant)]  # type: ignore[arg-type]
+        return len(range(*bounds))
+    return None
 
 
 def _ends(statements) -> bool:

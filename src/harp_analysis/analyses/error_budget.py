@@ -42,7 +42,7 @@ from ..engines.threedof import fly_3dof
 from ..foundation import earth
 from ..foundation.caching import cached_copies
 from ..foundation.sweeps import SAMPLING_METHODS, chunks, sample_chunk, sweep
-from ..foundation.validation import check_choice, check_range, real_number, whole_number
+from ..foundation.validation import Bounds, check_choice, real_number, whole_number
 from ..models.launch import Launch, Launches, baseline_chapter_4, chapter_2
 from ..models.projectiles import HP
 from ..models.trajectory import launch_frame, rotate_about_axis
@@ -353,7 +353,7 @@ def _check_uncertainties(uncertainties) -> tuple[Uncertainty, ...]:
         if not isinstance(u, Uncertainty):
             raise TypeError(f"uncertainties[{position}] must be an Uncertainty; got {u!r:.60}")
         name = f"uncertainties[{position}].sd"
-        check_range(real_number(u.sd, name), name, low=0.0)
+        Bounds(low=0.0).check(real_number(u.sd, name), name)
     return uncertainties
 
 

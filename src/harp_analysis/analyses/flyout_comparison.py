@@ -56,7 +56,7 @@ from ..engines.threedof import fly_3dof
 from ..foundation import earth
 from ..foundation.caching import cached_copies
 from ..foundation.stored import stored_arrays
-from ..foundation.validation import ModelValidityWarning, check_choice, check_range, real_number
+from ..foundation.validation import Bounds, ModelValidityWarning, check_choice, real_number
 from ..models.launch import Launch, Launches
 from ..models.projectiles import BASELINE
 from ..models.sites import YUMA
@@ -133,7 +133,7 @@ def grid_at(scale: float) -> Grid:
     ``20 scale`` steps; the largest speed step 0.09/``scale``; ``12 scale`` bearings (at
     least four); the density's three nodes (their quadratic's error, a few metres, below every
     grid's). Scale 1 is the default grid itself."""
-    scale = check_range(real_number(scale, "scale"), "scale", low=0.1, high=4.0)
+    scale = Bounds(low=0.1, high=4.0).check(real_number(scale, "scale"), "scale")
     default = np.array(DEFAULT_GRID.elevations_deg)
     steps = max(3, round((default.size - 1) * scale))
     spacing = PchipInterpolator(np.linspace(0.0, 1.0, default.size), default)
@@ -304,7 +304,7 @@ def size_needed(
     check_choice(gun, "gun", GUNS)
     check_choice(method, "method", METHODS)
     check_choice(measure, "measure", _ERRORS)
-    target = check_range(real_number(target, "target"), "target", low=0.0, low_inclusive=False)
+    target = Bounds(low=0.0, low_inclusive=False).check(real_number(target, "target"), "target")
     frame = comparison() if frame is None else frame
     other = next(name for name in METHODS if name != method)
     mine, theirs = (frame[(frame.gun == gun) & (frame.method == m)] for m in (method, other))

@@ -18,7 +18,7 @@ from ..engines.sixdof import simulate_6dof
 from ..engines.threedof import simulate_3dof
 from ..foundation import earth
 from ..foundation.caching import cached_copies
-from ..foundation.validation import check_choice, check_range, real_number
+from ..foundation.validation import Bounds, check_choice, real_number
 from ..models.launch import Launch, chapter_2
 from ..models.projectiles import get_projectile
 
@@ -126,20 +126,15 @@ def launch_drag_to_gravity(
 
 
 def _positive(value, name: str) -> float:
-    return check_range(real_number(value, name), name, low=0.0, low_inclusive=False)
+    return Bounds(low=0.0, low_inclusive=False).check(real_number(value, name), name)
 
 
 def _altitude_km(altitude_km, flight: pd.DataFrame) -> float:
     """``altitude_km`` from the ground to below ``flight``'s apogee (the interval's top), or an
     error naming it."""
     apogee_km = flight.attrs["apogee_altitude_m"] / 1e3
-    return check_range(
-        real_number(altitude_km, "altitude_km"),
-        "altitude_km",
-        low=0.0,
-        high=apogee_km,
-        high_inclusive=False,
-        unit="km",
+    return Bounds(low=0.0, high=apogee_km, high_inclusive=False, unit="km").check(
+        real_number(altitude_km, "altitude_km"), "altitude_km"
     )
 
 

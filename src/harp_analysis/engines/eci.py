@@ -53,7 +53,7 @@ import pandas as pd
 
 from ..foundation import earth
 from ..foundation.compiled import formula, select
-from ..foundation.validation import check_choice, check_range, finite_array, whole_number
+from ..foundation.validation import Bounds, check_choice, finite_array, whole_number
 from ..models.atmosphere import TEXT_DECAY_CONSTANT_PER_M
 from ..models.launch import Launch, Launches
 from ..models.sites import get_site
@@ -97,35 +97,19 @@ __all__ = [
 
 
 def _check_launch(speed_m_s, elevation_rad, bearing_rad, latitude_rad):
-    speed = check_range(
-        finite_array(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0, low_inclusive=False, unit="m/s"
+    speed = Bounds(low=0.0, low_inclusive=False, unit="m/s").finite(speed_m_s, "speed_m_s")
+    elevation = Bounds(low=0.0, high=math.pi / 2, low_inclusive=False, unit="rad").finite(
+        elevation_rad, "elevation_rad"
     )
-    elevation = check_range(
-        finite_array(elevation_rad, "elevation_rad"),
-        "elevation_rad",
-        low=0.0,
-        low_inclusive=False,
-        high=math.pi / 2,
-        unit="rad",
-    )
-    bearing = check_range(
-        finite_array(bearing_rad, "bearing_rad"),
-        "bearing_rad",
-        low=0.0,
-        high=2 * math.pi,
-        high_inclusive=False,
-        unit="rad",
+    bearing = Bounds(low=0.0, high=2 * math.pi, high_inclusive=False, unit="rad").finite(
+        bearing_rad, "bearing_rad"
     )
     return np.broadcast_arrays(speed, elevation, bearing, _check_latitude(latitude_rad))
 
 
 def _check_latitude(latitude_rad):
-    return check_range(
-        finite_array(latitude_rad, "latitude_rad"),
-        "latitude_rad",
-        low=-math.pi / 2,
-        high=math.pi / 2,
-        unit="rad",
+    return Bounds(low=-math.pi / 2, high=math.pi / 2, unit="rad").finite(
+        latitude_rad, "latitude_rad"
     )
 
 
@@ -625,24 +609,15 @@ def _corrections(
 
 
 def _check_mass(mass_kg):
-    return check_range(
-        finite_array(mass_kg, "mass_kg"), "mass_kg", low=0.0, low_inclusive=False, unit="kg"
-    )
+    return Bounds(low=0.0, low_inclusive=False, unit="kg").finite(mass_kg, "mass_kg")
 
 
 def _check_drag_area(drag_area_m2):
-    return check_range(
-        finite_array(drag_area_m2, "drag_area_m2"), "drag_area_m2", low=0.0, unit="m^2"
-    )
+    return Bounds(low=0.0, unit="m^2").finite(drag_area_m2, "drag_area_m2")
 
 
 def _check_density(surface_density_kg_m3):
-    return check_range(
-        finite_array(surface_density_kg_m3, "surface_density_kg_m3"),
-        "surface_density_kg_m3",
-        low=0.0,
-        unit="kg/m^3",
-    )
+    return Bounds(low=0.0, unit="kg/m^3").finite(surface_density_kg_m3, "surface_density_kg_m3")
 
 
 def correction_for_arrays(
@@ -701,10 +676,25 @@ def correction_for_launch(
     its Earth rotation. :meth:`LaunchCorrection.solution` is its MKS. The ECI MKS is drag-only: a
     wind is ignored with a warning; it launches from the Earth's surface (r0 = R).
 
-    ``mass_kg``, ``drag_area_m2`` (Cd0 A, m^2) and ``surface_density_kg_m3`` (rho0 at the gun)
-    replace what the launch's projectile and air give, each a number or an array broadcasting
-    with the launches: the rounds of one gun whose masses, drag or air differ (HARP's rounds,
-    each with its own mass; a drag area being fitted; a site's measured air)."""
+    Parameters
+    ----------
+    launch : Launch or Launches
+        The launch, or launches sharing one Earth rotation.
+    model : str or EciModel
+        How the corrections read the text: "consistent" (the default), "dissertation" or
+        "printed_columns" (:data:`MODELS`), or a model of your own.
+    mass_kg, drag_area_m2, surface_density_kg_m3 : float or array, optional
+        Mass (kg), Cd0 A (m^2) and rho0 at the gun (kg/m^3) in place of what the launch's
+        projectile and air give, each a number or an array broadcasting with the launches: the
+        rounds of one gun whose masses, drag or air differ (HARP's rounds, each with its own
+        mass; a drag area being fitted; a site's measured air). Only these are checked.
+
+    Returns
+    -------
+    LaunchCorrection
+        The corrected launch of each launch (eqs 5.1-5.8) and its MKS constants (eqs 6.11-6.16),
+        arrays for Launches.
+    """
     if not isinstance(launch, Launch | Launches):
         raise TypeError(f"launch must be a Launch or Launches; got {type(launch).__name__}")
     model = get_model(model)

@@ -39,7 +39,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..foundation.validation import check_choice, check_range, finite_array, finite_scalar
+from ..foundation.validation import Bounds, check_choice, finite_array, finite_scalar
 from ..models.launch import Launch
 from . import mks
 
@@ -114,10 +114,10 @@ def natural_frequency(solution: mks.ModifiedKeplerSolution, theta_rad, tan_phi=N
     ``tan_phi`` is the local flight-path slope, by default frozen at its launch value."""
     launch = _Launch.of(solution)
     slope = launch.tan_phi0 if tan_phi is None else finite_array(tan_phi, "tan_phi")
-    theta = check_range(finite_array(theta_rad, "theta_rad"), "theta_rad", low=0.0, unit="rad")
+    theta = Bounds(low=0.0, unit="rad").finite(theta_rad, "theta_rad")
     square = 1 + launch.tau * launch.beta_decay * slope * np.exp(-launch.tau * theta)
     return np.sqrt(
-        check_range(square, "tan_phi (omega_n^2 = 1 + tau beta tan(phi) gamma)", low=0.0)
+        Bounds(low=0.0).check(square, "tan_phi (omega_n^2 = 1 + tau beta tan(phi) gamma)")
     )
 
 
@@ -134,13 +134,8 @@ def frequency_response(omega, natural_frequency):
     e^{-s theta}, whose particular solutions scale as 1/(omega_n^2 + s^2) instead; either way
     omega_n barely matters at s = tau, 2 tau. The large effect of eq 3.29's u-coefficient is on
     the homogeneous (ballistic) part of u, which this response does not show."""
-    omega = check_range(finite_array(omega, "omega"), "omega", low=0.0)
-    omega_n = check_range(
-        finite_array(natural_frequency, "natural_frequency"),
-        "natural_frequency",
-        low=0.0,
-        low_inclusive=False,
-    )
+    omega = Bounds(low=0.0).finite(omega, "omega")
+    omega_n = Bounds(low=0.0, low_inclusive=False).finite(natural_frequency, "natural_frequency")
     with np.errstate(divide="ignore"):
         return 1 / np.abs(omega_n**2 - omega**2)
 
@@ -186,13 +181,7 @@ class NumericalKeplerSolution:
     _dense: object
 
     def _w(self, theta_rad):
-        theta = check_range(
-            finite_array(theta_rad, "theta_rad"),
-            "theta_rad",
-            low=0.0,
-            high=self._dense.t_max,
-            unit="rad",
-        )
+        theta = Bounds(low=0.0, high=self._dense.t_max, unit="rad").finite(theta_rad, "theta_rad")
         return self._dense(theta)
 
     def u(self, theta_rad):
@@ -231,7 +220,7 @@ def solve(
     launch = _Launch.of(solution)
     check_choice(form, "form", FORMS)
     theta_max = finite_scalar(theta_max_rad, "theta_max_rad")
-    check_range(theta_max, "theta_max_rad", low=0.0, low_inclusive=False, unit="rad")
+    Bounds(low=0.0, low_inclusive=False, unit="rad").check(theta_max, "theta_max_rad")
     second = _second_derivative(launch, form, _n_terms(n_terms))
 
     def apogee(theta, y):

@@ -85,20 +85,20 @@ def whole_number(value, name: str, *, low: int, high: float = math.inf) -> int:
     number = real_number(value, name)
     if number != int(number):
         raise ValueError(f"{name} must be a whole number; got {value!r}")
-    return int(check_range(number, name, low=low, high=high))
+    return int(Bounds(low, high).check(number, name))
 
 
 def probability(value, name: str) -> float:
     """``value`` as a number strictly between 0 and 1 (a confidence level, a significance), or
     an error naming ``name``."""
     number = real_number(value, name)
-    return check_range(number, name, low=0.0, high=1.0, low_inclusive=False, high_inclusive=False)
+    return Bounds(0.0, 1.0, low_inclusive=False, high_inclusive=False).check(number, name)
 
 
 def positive_scalar(value, name: str, unit: str = "") -> float:
     """``value`` as one finite float > 0, or an error naming ``name`` (a time span, a step, a
     tolerance: the engines' numerical options)."""
-    return check_range(finite_scalar(value, name), name, low=0.0, low_inclusive=False, unit=unit)
+    return Bounds(low=0.0, low_inclusive=False, unit=unit).scalar(value, name)
 
 
 def finite_scalar(value, name: str) -> float:
@@ -125,9 +125,11 @@ def inside(value, low, high, low_inclusive, high_inclusive):
 @dataclass(frozen=True)
 class Bounds:
     """An interval a number must lie in: the one vocabulary of the package's range checks, on a
-    number (:meth:`~harp_analysis.foundation.validation.Bounds.number`), an array
+    number (:meth:`~harp_analysis.foundation.validation.Bounds.number`,
+    :meth:`~harp_analysis.foundation.validation.Bounds.scalar`), an array
     (:meth:`~harp_analysis.foundation.validation.Bounds.array`,
-    :meth:`~harp_analysis.foundation.validation.Bounds.check`) or, through
+    :meth:`~harp_analysis.foundation.validation.Bounds.finite`), a value already converted
+    (:meth:`~harp_analysis.foundation.validation.Bounds.check`) or, through
     :attr:`~harp_analysis.foundation.validation.Bounds.limits` and :func:`inside`, in compiled
     code."""
 
@@ -166,6 +168,16 @@ class Bounds:
             index = int(np.flatnonzero(outside)[0])
             raise ValueError(self.outside(f"{name}[{index}]", float(array.flat[index])))
         return array
+
+    def finite(self, value, name: str) -> np.ndarray:
+        """``value`` as a float array of finite numbers (:func:`finite_array`; a number gives a
+        0-d array) inside, or an error naming ``name``."""
+        return self.check(finite_array(value, name), name)
+
+    def scalar(self, value, name: str) -> float:
+        """``value`` as one finite float (:func:`finite_scalar`) inside, or an error naming
+        ``name``."""
+        return self.check(finite_scalar(value, name), name)
 
     def check(self, value: Checked, name: str) -> Checked:
         """``value`` itself, or a ValueError naming ``name`` and its first element outside

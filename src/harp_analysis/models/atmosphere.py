@@ -30,7 +30,7 @@ from typing import Any, Literal
 import numpy as np
 
 from ..foundation.compiled import formula, jit, select
-from ..foundation.validation import check_choice, check_range, real_array, real_number
+from ..foundation.validation import Bounds, check_choice, real_array, real_number
 
 __all__ = [
     "DRY_AIR_GAS_CONSTANT_J_KG_K",
@@ -84,7 +84,7 @@ MAX_GRID_POINTS = 10**7
 
 def _positive(value, name: str, unit: str = "") -> float:
     """A number > 0, strictly (a string such as "10000" is refused, not read)."""
-    return check_range(real_number(value, name), name, low=0.0, low_inclusive=False, unit=unit)
+    return Bounds(low=0.0, low_inclusive=False, unit=unit).check(real_number(value, name), name)
 
 
 def _grid_step(top_m: float, step_m: float, name: str = "step_m") -> float:
@@ -107,7 +107,7 @@ _HILL_SPHERE_M = 1.5e9
 def _altitudes(altitude_m, *, ceiling_m: float | None = None) -> np.ndarray:
     altitude = real_array(altitude_m, "altitude_m")
     high = _HILL_SPHERE_M if ceiling_m is None else ceiling_m
-    return check_range(altitude, "altitude_m", low=0.0, high=high, unit="m")
+    return Bounds(low=0.0, high=high, unit="m").check(altitude, "altitude_m")
 
 
 @cache
@@ -436,7 +436,7 @@ class FitDefinition:
 
     def __post_init__(self):
         _positive(self.top_m, "top_m", "m")
-        check_range(_positive(self.step_m, "step_m", "m"), "step_m", high=self.top_m, unit="m")
+        Bounds(high=self.top_m, unit="m").check(_positive(self.step_m, "step_m", "m"), "step_m")
         _grid_step(self.top_m, self.step_m)
         check_choice(self.space, "space", ("linear", "log"))
 

@@ -20,7 +20,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from ..foundation.compiled import formula, jit
-from ..foundation.validation import check_choice, check_range, finite_array
+from ..foundation.validation import Bounds, check_choice, finite_array
 
 __all__ = [
     "DragLaw",
@@ -53,7 +53,7 @@ class DragLaw(Protocol):
 
 
 def _mach(mach) -> np.ndarray:
-    return check_range(finite_array(mach, "mach"), "mach", low=0.0)
+    return Bounds(low=0.0).finite(mach, "mach")
 
 
 @formula
@@ -133,7 +133,7 @@ class TabulatedDragLaw:
     def __call__(self, mach) -> np.ndarray:
         mach = _mach(mach)
         if self.outside == "raise":
-            check_range(mach, "mach", low=self.mach[0], high=self.mach[-1])
+            Bounds(low=self.mach[0], high=self.mach[-1]).check(mach, "mach")
         return self.evaluate(mach)
 
 

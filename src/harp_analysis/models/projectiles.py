@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..foundation.validation import check_choice, check_range, real_number
+from ..foundation.validation import Bounds, check_choice, real_number
 from .drag import BASELINE_CONE, M829, AeroTables, DragLaw
 
 __all__ = [
@@ -79,14 +79,14 @@ class Projectile:
         if not isinstance(self.name, str) or not self.name:
             raise TypeError(f"name must be a non-empty string; got {self.name!r}")
         for name in ("mass_kg", "reference_area_m2", "launch_speed_m_s"):
-            value = check_range(
-                real_number(getattr(self, name), name), name, low=0.0, low_inclusive=False
+            value = Bounds(low=0.0, low_inclusive=False).check(
+                real_number(getattr(self, name), name), name
             )
             object.__setattr__(self, name, value)
         for name in ("diameter_m", "roll_inertia_kg_m2", "pitch_inertia_kg_m2"):
             if getattr(self, name) is not None:
-                value = check_range(
-                    real_number(getattr(self, name), name), name, low=0.0, low_inclusive=False
+                value = Bounds(low=0.0, low_inclusive=False).check(
+                    real_number(getattr(self, name), name), name
                 )
                 object.__setattr__(self, name, value)
         if not callable(self.drag_law) or not hasattr(self.drag_law, "evaluate"):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..foundation.validation import check_choice, check_range, finite_array
+from ..foundation.validation import Bounds, check_choice, finite_array
 from .atmosphere import SEA_LEVEL_DENSITY_KG_M3
 
 __all__ = ["LaunchSite", "BARBADOS", "YUMA", "dms_to_deg", "get_site"]
@@ -32,7 +32,7 @@ def dms_to_deg(degrees: float, minutes: float, seconds: float) -> float:
     """Degrees, minutes, seconds to decimal degrees; the sign of ``degrees`` applies to all."""
     degrees = float(finite_array(degrees, "degrees"))
     for value, name in ((minutes, "minutes"), (seconds, "seconds")):
-        check_range(finite_array(value, name), name, low=0, high=60, high_inclusive=False)
+        Bounds(low=0, high=60, high_inclusive=False).finite(value, name)
     return math.copysign(abs(degrees) + minutes / 60 + seconds / 3600, degrees)
 
 

@@ -64,7 +64,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq, curve_fit, minimize_scalar
 
-from ..foundation.validation import check_choice, check_range, finite_array, finite_scalar
+from ..foundation.validation import Bounds, check_choice, finite_array, finite_scalar
 from .drag import BASELINE_CONE as BASELINE_CONE_LAW
 from .drag import ExponentialDragLaw
 
@@ -225,7 +225,7 @@ def _cone_flow_point(mach, half_angle, gamma):
 
 def _gamma(gamma) -> float:
     gamma = finite_scalar(gamma, "gamma")
-    check_range(gamma, "gamma", low=1.0, low_inclusive=False)
+    Bounds(low=1.0, low_inclusive=False).check(gamma, "gamma")
     return gamma
 
 
@@ -238,16 +238,10 @@ def cone_flow(mach, half_angle_rad, gamma=1.4) -> ConeFlow:
     that the shock lies within 1e-6 rad of the Mach angle and the shooting cannot resolve it.
     Anderson, Modern Compressible Flow, 3rd ed., Sec 10.4 (pp 366-372).
     """
-    mach = check_range(finite_array(mach, "mach"), "mach", low=1.0, low_inclusive=False)
-    half_angle = check_range(
-        finite_array(half_angle_rad, "half_angle_rad"),
-        "half_angle_rad",
-        low=0.0,
-        high=0.5 * math.pi,
-        low_inclusive=False,
-        high_inclusive=False,
-        unit="rad",
-    )
+    mach = Bounds(low=1.0, low_inclusive=False).finite(mach, "mach")
+    half_angle = Bounds(
+        low=0.0, high=0.5 * math.pi, low_inclusive=False, high_inclusive=False, unit="rad"
+    ).finite(half_angle_rad, "half_angle_rad")
     gamma = _gamma(gamma)
     mach, half_angle = np.broadcast_arrays(mach, half_angle)
     points = [
@@ -276,7 +270,7 @@ def cone_drag_coefficient(
     """
     check_choice(normalisation, "normalisation", NORMALISATIONS)
     base = finite_scalar(base_pressure_ratio, "base_pressure_ratio")
-    check_range(base, "base_pressure_ratio", low=0.0)
+    Bounds(low=0.0).check(base, "base_pressure_ratio")
     flow = cone_flow(mach, half_angle_rad, gamma)
     speed_term = flow.mach**2
     if normalisation == "appendix_c":

@@ -519,52 +519,80 @@ def fly(launch: Launch, engines=ENGINES[:2]) -> tuple[dict[str, Flown], list[str
             if engine not in ENGINES:
                 raise ValueError(f"engines must be among {', '.join(ENGINES)}; got {engine!r}")
             try:
-                if engine in _RIGID_BODY:
-                    flown[engine] = _from_table(engine, _RIGID_BODY[engine].fly(launch))
-                elif engine == "MKS":
-                    flown[engine] = _eci_mks(launch, three)
-                elif engine == _CALIBRATED:
-                    flown[engine] = _calibrated_mks(launch, three)
-                else:
-                    flown[engine] = _improved_mks(launch, three)
+                flown[engine] = _fly_beside_3dof(engine, launch, three)
             except (ValueError, TypeError, ArithmeticError) as error:
                 messages.append(in_readers_words(f"The {engine} cannot fly this launch: {error}"))
+    hidden_beta = _hide_mks_beyond_shown_beta(flown)
+    _add_warnings(messages, caught, hidden_beta, calibrated_shown=_CALIBRATED in flown)
+    messages += _atmosphere_messages(flown[_REFERENCE.label].apogee_m)
+    return flown, messages
+
+
+def _fly_beside_3dof(engine: str, launch: Launch, three: pd.DataFrame) -> Flown:
+    """``engine`` (of :data:`ENGINES`, not the 3DOF) flown on ``launch``; an MKS is compared
+    with the 3DOF's table ``three``."""
+    if engine in _RIGID_BODY:
+        return _from_table(engine, _RIGID_BODY[engine].fly(launch))
+    if engine == "MKS":
+        return _eci_mks(launch, three)
+    if engine == _CALIBRATED:
+        return _calibrated_mks(launch, three)
+    return _improved_mks(launch, three)
+
+
+def _hide_mks_beyond_shown_beta(flown: dict[str, Flown]) -> float | None:
+    """The MKS's beta if it is beyond :data:`MKS_SHOWN_BETA`, where the MKS and the improved
+    MKS are then removed from ``flown``; else None."""
     beta = flown["MKS"].beta if "MKS" in flown else None
-    hidden = beta is not None and beta > MKS_SHOWN_BETA
-    if hidden:
+    if beta is not None and beta > MKS_SHOWN_BETA:
         for engine in ("MKS", "improved MKS"):
             flown.pop(engine, None)
+        return beta
+    return None
+
+
+def _add_warnings(
+    messages: list[str], caught, hidden_beta: float | None, *, calibrated_shown: bool
+) -> None:
+    """Append to ``messages`` each of the models' own warnings ``caught`` (not numpy's
+    arithmetic on the way), in the reader's words and once; where the MKS was hidden for its
+    ``hidden_beta``, say why once, after its own high-drag warning if it raised one."""
     not_shown = (
         f"beyond beta = {MKS_SHOWN_BETA:g} the three-term series of the drag's driving function "
         "(eq 3.30) is off by a factor of seven or more, so no MKS is shown"
         + (
             " but the calibrated one, whose table learned what the series misses from this "
             "gun's 3DOF flights"
-            if _CALIBRATED in flown
+            if calibrated_shown
             else ""
         )
     )
-    for warning in caught:  # the models' own warnings, not numpy's arithmetic on the way
+    hidden = hidden_beta is not None
+    for warning in caught:
         text = in_readers_words(str(warning.message))
         if hidden and issubclass(warning.category, mks.HighDragWarning):  # its beta: one message
             text, hidden = f"{text}; {not_shown}", False
         if not issubclass(warning.category, RuntimeWarning) and text not in messages:
             messages.append(text)
     if hidden:  # the MKS's beta (eq 3.22) within its limit, this one (its decay's) not
-        messages.append(f"MKS beta x decay scale = {beta:.2f}: {not_shown}.")
-    apogee = flown[_REFERENCE.label].apogee_m
-    if not math.isfinite(apogee):
-        messages.append(
+        messages.append(f"MKS beta x decay scale = {hidden_beta:.2f}: {not_shown}.")
+
+
+def _atmosphere_messages(apogee_m: float) -> list[str]:
+    """Why the MKS's assumptions fail for a flight whose 3DOF apogee is ``apogee_m``: it
+    reaches none, or stays in the sensible atmosphere (empty when neither)."""
+    if not math.isfinite(apogee_m):
+        return [
             "The 3DOF reaches no apogee within its time limit: at this speed the round escapes "
             "the Earth or is still climbing; the MKS's numbers then describe an orbit, not a shot."
-        )
-    elif apogee < mks.SENSIBLE_ATMOSPHERE_M:
-        messages.append(
-            f"The flight never leaves the sensible atmosphere (3DOF apogee {apogee / 1e3:.1f} km, "
-            f"below {mks.SENSIBLE_ATMOSPHERE_M / 1e3:g} km): the MKS assumes a flight that "
+        ]
+    if apogee_m < mks.SENSIBLE_ATMOSPHERE_M:
+        return [
+            f"The flight never leaves the sensible atmosphere (3DOF apogee {apogee_m / 1e3:.1f} "
+            f"km, below {mks.SENSIBLE_ATMOSPHERE_M / 1e3:g} km): the MKS assumes a flight that "
             "spends most of its time above the air (Chapter 3 B)."
-        )
-    return flown, messages
+        ]
+    return []
 
 
 # --- the views ------------------------------------------------------------------------------
@@ -665,14 +693,29 @@ class Explorer:
     reader's move and changes nothing, so a preset flies as named until the reader edits."""
 
     def __init__(self, preset_name: str = "Chapter 2 A: HP"):
-        import ipywidgets as w
-
         self._presets = presets()
         self.settings = preset(preset_name)
         self._holding = False
         self._rigid_body = False
         self._calibrated_gun: flight_grid.Gun | None = None  # the last the calibrated MKS flew
         self.last_flown: dict[str, Flown] = {}
+        self._make_widgets(preset_name)
+        self._name_parts()
+        for name, slider in self.sliders.items():
+            self._couple(slider, self.controls[name])
+        self._show(self.settings)
+        for name, control in self.controls.items():
+            # another MKS is another view of the same launch, not another launch
+            control.observe(self.update if name in _VIEWS else self._changed, names="value")
+        self.preset.observe(self._preset_chosen, names="value")
+        self.rigid_body.on_click(self._fly_rigid_body)
+        self.widget = self._laid_out()
+        self.update()
+
+    def _make_widgets(self, preset_name: str) -> None:
+        """The preset's dropdown, the sliders, the controls, the button and the views."""
+        import ipywidgets as w
+
         style = {"description_width": "150px"}
         layout = dict(style=style, layout=w.Layout(width="380px"))
         self.preset = w.Dropdown(
@@ -725,6 +768,9 @@ class Explorer:
         self.plot = w.Image(format="png", layout=w.Layout(max_width="100%"))
         self.summary = w.HTML(layout=w.Layout(width="100%"))
         self.messages = w.HTML(layout=w.Layout(width="100%"))
+
+    def _name_parts(self) -> None:
+        """The CSS classes ``harp-*`` that name each widget for a browser."""
         for widget, name in (
             (self.preset, "preset"),
             (self.plot, "plot"),
@@ -737,13 +783,11 @@ class Explorer:
             control.add_class(f"harp-{name}")
         for name, slider in self.sliders.items():
             slider.add_class(f"harp-{name}-slider")
-            self._couple(slider, self.controls[name])
-        self._show(self.settings)
-        for name, control in self.controls.items():
-            # another MKS is another view of the same launch, not another launch
-            control.observe(self.update if name in _VIEWS else self._changed, names="value")
-        self.preset.observe(self._preset_chosen, names="value")
-        self.rigid_body.on_click(self._fly_rigid_body)
+
+    def _laid_out(self):
+        """The whole explorer: the controls (each slider beside its box) beside the views."""
+        import ipywidgets as w
+
         rows = [
             w.HBox([self.sliders[name], control]) if name in self.sliders else control
             for name, control in self.controls.items()
@@ -753,9 +797,9 @@ class Explorer:
             [self.plot, self.summary, self.messages],
             layout=w.Layout(flex="1 1 420px", max_width="820px", min_width="0"),
         )
-        self.widget = w.HBox([controls, views], layout=w.Layout(flex_flow="row wrap"))
-        self.widget.add_class("harp-explorer")
-        self.update()
+        widget = w.HBox([controls, views], layout=w.Layout(flex_flow="row wrap"))
+        widget.add_class("harp-explorer")
+        return widget
 
     @staticmethod
     def _couple(slider, box) -> None:

@@ -38,9 +38,11 @@ __all__ = [
     "readme_headline",
     "render_readme_headline",
     "README_MARKERS",
+    "SHOWN",
 ]
 
-_SHOWN = {
+#: The statuses as the gallery shows them.
+SHOWN = {
     "reproduced": "reproduced",
     "deviates": "drawn, deviates",
     "partial": "partial",
@@ -72,21 +74,31 @@ def status_problems() -> list[str]:
     problems = []
     for entry in load_registry():
         rows = bearing_on(entry.number, tied.get(entry.number, []))
-        deviating = [r for r in rows if r.claim.verdict != "reproduces"]
-        if entry.status == "reproduced" and deviating:
-            problems.append(
-                f"{entry.label} is 'reproduced' but {_rows(deviating)} do not reproduce"
-            )
-        if entry.status == "deviates" and not deviating:
-            problems.append(f"{entry.label} is 'deviates' but no ledger row about it deviates")
-        if entry.status == "reproduced" and not rows and not entry.no_number.strip():
-            problems.append(
-                f"{entry.label} is 'reproduced' but no ledger row speaks about it: score what "
-                "the text states about it, or say in no_number that it states no number"
-            )
-        if rows and entry.no_number:
-            problems.append(f"{entry.label} has ledger rows, so its no_number is stale")
+        problems += _verdict_problems(entry, rows) + _no_number_problems(entry, rows)
     return problems
+
+
+def _verdict_problems(entry: RegistryEntry, rows: list[ClaimResult]) -> list[str]:
+    """Where ``entry``'s status disagrees with the verdicts of ``rows``, the rows bearing on it."""
+    deviating = [r for r in rows if r.claim.verdict != "reproduces"]
+    if entry.status == "reproduced" and deviating:
+        return [f"{entry.label} is 'reproduced' but {_rows(deviating)} do not reproduce"]
+    if entry.status == "deviates" and not deviating:
+        return [f"{entry.label} is 'deviates' but no ledger row about it deviates"]
+    return []
+
+
+def _no_number_problems(entry: RegistryEntry, rows: list[ClaimResult]) -> list[str]:
+    """Where ``entry``'s ``no_number`` is missing (a reproduced figure without ``rows``, the rows
+    bearing on it) or stale (a figure with rows)."""
+    if entry.status == "reproduced" and not rows and not entry.no_number.strip():
+        return [
+            f"{entry.label} is 'reproduced' but no ledger row speaks about it: score what "
+            "the text states about it, or say in no_number that it states no number"
+        ]
+    if rows and entry.no_number:
+        return [f"{entry.label} has ledger rows, so its no_number is stale"]
+    return []
 
 
 def reason_text(entry: RegistryEntry) -> str:
@@ -127,7 +139,7 @@ def _line(entry: RegistryEntry, tied: list[ClaimResult], measured: list[Measured
         reason = f"{reason} No ledger row: {entry.no_number}".strip()
     return (
         f"| {entry.label} | {entry.title} | {entry.figure_class} | "
-        f"{_SHOWN[entry.status]} | {notebook} | {_cell(reason)} |"
+        f"{SHOWN[entry.status]} | {notebook} | {_cell(reason)} |"
     )
 
 
@@ -143,11 +155,6 @@ def render_gallery(target: Path | None = None) -> Path:
     tied, measured = claims_by_figure(), measurements_by_figure()
     entries = [e for e in load_registry() if not e.extension]
     extensions = [e for e in load_registry() if e.extension]
-    counts = {
-        status: sum(e.status == status for e in entries)
-        for status in STATUSES
-        if status != "extension"  # the dissertation's figures are never extensions
-    }
     lines = [
         "# Figures of Stutz (2013), regenerated",
         "",
@@ -155,14 +162,11 @@ def render_gallery(target: Path | None = None) -> Path:
         "hand. A figure is *reproduced* when every number the text states about it reproduces "
         "([CLAIMS.md](CLAIMS.md)); *drawn, deviates* when one does not, with the rows linked.",
         "",
-        ", ".join(f"{n} {_SHOWN[status]}" for status, n in counts.items())
-        + f" ({len(entries)} in all).",
+        _counted(entries),
         "",
-        *_TABLE_HEAD,
-        *(_line(e, tied.get(e.number, []), measured.get(e.number, [])) for e in entries),
-        "",
+        *_table(entries, tied, measured),
+        *_drawn(entries, tied, measured),
     ]
-    lines += _drawn(entries, tied, measured)
     if extensions:
         lines += [
             "# Beyond the dissertation",
@@ -175,13 +179,32 @@ def render_gallery(target: Path | None = None) -> Path:
             "its own work is listed as extension results, measured and not scored "
             f"({len(extensions)} figures in all).",
             "",
-            *_TABLE_HEAD,
-            *(_line(e, tied.get(e.number, []), measured.get(e.number, [])) for e in extensions),
-            "",
+            *_table(extensions, tied, measured),
             *_drawn(extensions, tied, measured),
         ]
     text = "\n".join(lines)
     return paths.write_atomically(target, lambda path: path.write_text(text))
+
+
+def _counted(entries: list[RegistryEntry]) -> str:
+    """How many of the dissertation's ``entries`` have each status, and how many in all."""
+    counts = {
+        status: sum(e.status == status for e in entries)
+        for status in STATUSES
+        if status != "extension"  # the dissertation's figures are never extensions
+    }
+    shown = ", ".join(f"{n} {SHOWN[status]}" for status, n in counts.items())
+    return f"{shown} ({len(entries)} in all)."
+
+
+def _table(
+    entries: list[RegistryEntry],
+    tied: dict[str, list[ClaimResult]],
+    measured: dict[str, list[MeasuredResult]],
+) -> list[str]:
+    """The table of ``entries``: a line each, with its status, reason and ledger rows."""
+    lines = [_line(e, tied.get(e.number, []), measured.get(e.number, [])) for e in entries]
+    return [*_TABLE_HEAD, *lines, ""]
 
 
 def _drawn(
@@ -206,7 +229,7 @@ def _drawn(
             "",
             f"*{caption_text(e)}*" if e.caption else "",
             "",
-            f"Status: {_SHOWN[e.status]}. Drawn by `notebooks/{e.notebook}`."
+            f"Status: {SHOWN[e.status]}. Drawn by `notebooks/{e.notebook}`."
             + (f" Ledger rows: {rows}." if rows else "")
             + (f" {exempted}" if exempted else "")
             + (f" Extension results: {results}." if results else ""),

@@ -236,35 +236,49 @@ def _row(table: str, raw: dict, source: Path) -> Claim | Measurement:
     """A ``[[claim]]`` or ``[[extension]]`` row of ``source``, checked field by field."""
     kind = Claim if table == "claim" else Measurement
     where = f"{source.name} {table} {raw.get('id', '?')!r}"
+    _check_names(raw, table, kind, where)
+    _check_values(raw, where)
+    raw = {**raw, "figures": tuple(raw["figures"])}
+    if "expected" in raw:
+        raw = {**raw, "expected": _expected_range(raw["expected"], where)}
+    if kind is Claim:
+        _check_claim(raw, where)
+    return kind(**raw)
+
+
+def _check_names(raw: dict, table: str, kind: type[Claim | Measurement], where: str) -> None:
+    """Every field ``table`` requires is there, and none that ``kind`` lacks."""
     missing = [name for name in _REQUIRED[table] if name not in raw]
     if missing:
         raise ValueError(f"{where}: missing field(s) {', '.join(missing)}")
     unknown = set(raw) - set(kind.__dataclass_fields__)
     if unknown:
         raise ValueError(f"{where}: unknown field(s) {', '.join(sorted(unknown))}")
+
+
+def _check_values(raw: dict, where: str) -> None:
+    """The values of the fields of either kind of row: compute, figures and quote (if any)."""
     if ":" not in raw["compute"]:
         raise ValueError(f"{where}: compute must read 'module:function', got {raw['compute']!r}")
     figures = raw["figures"]
     if not isinstance(figures, list) or not all(isinstance(f, str) for f in figures):
         raise ValueError(f'{where}: figures must be a list of figure numbers such as "4.7"')
-    raw = {**raw, "figures": tuple(figures)}
     if "quote" in raw and (
         not isinstance(raw["quote"], str) or len(re.findall(r"\w+", raw["quote"])) < 5
     ):
         raise ValueError(f"{where}: quote must be at least five words of the text")
-    if "expected" in raw:
-        low_high = raw["expected"]
-        if (
-            not isinstance(low_high, list)
-            or len(low_high) != 2
-            or not all(isinstance(v, int | float) for v in low_high)
-            or not low_high[0] < low_high[1]
-        ):
-            raise ValueError(f"{where}: expected must be [low, high] with low < high")
-        raw = {**raw, "expected": (float(low_high[0]), float(low_high[1]))}
-    if kind is Claim:
-        _check_claim(raw, where)
-    return kind(**raw)
+
+
+def _expected_range(low_high, where: str) -> tuple[float, float]:
+    """A row's ``expected`` range, checked: [low, high] with low < high."""
+    if (
+        not isinstance(low_high, list)
+        or len(low_high) != 2
+        or not all(isinstance(v, int | float) for v in low_high)
+        or not low_high[0] < low_high[1]
+    ):
+        raise ValueError(f"{where}: expected must be [low, high] with low < high")
+    return float(low_high[0]), float(low_high[1])
 
 
 def _check_claim(raw: dict, where: str) -> None:
@@ -403,21 +417,26 @@ def verdict_problems(result: ClaimResult) -> list[str]:
         problems.append(f"verdict {claim.verdict!r} needs an explanation")
     earned = earned_verdict(result)
     if claim.verdict != earned and (claim.verdict, earned) != ("recovered", "reproduces"):
-        least, greatest = deviation_range(result)
-        known = (
-            f", known to {max(least, 0.0):.4g}-{greatest:.4g}"
-            if claim.margin or result.interval
-            else ""
-        )
-        close = (
-            "" if claim.close_tolerance is None else f", close tolerance {claim.close_tolerance:g}"
-        )
-        fitted = f" (fitted to {claim.fitted_to})" if claim.fitted_to else ""
-        problems.append(
-            f"marked {claim.verdict!r} but its numbers earn {earned!r}{fitted}: deviation "
-            f"{result.deviation:.4g}{known}, tolerance {claim.tolerance:g}{close}"
-        )
+        problems.append(_unearned(result, earned))
     return problems
+
+
+def _unearned(result: ClaimResult, earned: str) -> str:
+    """Why ``result``'s verdict is not the one its numbers earn (``earned``): its deviation
+    (and the range it is known to) against its tolerances."""
+    claim = result.claim
+    least, greatest = deviation_range(result)
+    known = (
+        f", known to {max(least, 0.0):.4g}-{greatest:.4g}"
+        if claim.margin or result.interval
+        else ""
+    )
+    close = "" if claim.close_tolerance is None else f", close tolerance {claim.close_tolerance:g}"
+    fitted = f" (fitted to {claim.fitted_to})" if claim.fitted_to else ""
+    return (
+        f"marked {claim.verdict!r} but its numbers earn {earned!r}{fitted}: deviation "
+        f"{result.deviation:.4g}{known}, tolerance {claim.tolerance:g}{close}"
+    )
 
 
 def printed_digits(result: ClaimResult | MeasuredResult) -> int:

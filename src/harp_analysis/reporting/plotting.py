@@ -243,18 +243,26 @@ def label_overlaps(ax, label, renderer, *, labels=None) -> list[str]:
     over: each of ``labels`` (default: every other label of ``ax``) whose box overlaps its box,
     and each curve of ``ax`` whose visible (clipped) part crosses it, as phrases."""
     box = _box(label, renderer)
-    found = []
-    for other in _texts(ax) if labels is None else labels:
-        if other is not label and box.overlaps(_box(other, renderer)):
-            found.append(f"overlaps {_name(other)}")
+    found = [
+        f"overlaps {_name(other)}"
+        for other in (_texts(ax) if labels is None else labels)
+        if other is not label and box.overlaps(_box(other, renderer))
+    ]
+    return found + [f"sits over {_name(line)}" for line in _curves_crossing(ax, box)]
+
+
+def _curves_crossing(ax, box) -> list:
+    """The curves of ``ax`` whose visible part (within the axes, unless unclipped) crosses
+    ``box`` (display points); markers alone are no curve."""
+    crossing = []
     for line in ax.lines:
         if not line.get_visible() or _markers_only(line):
             continue
         seen = Bbox.intersection(box, ax.bbox) if line.get_clip_on() else box
         path = line.get_transform().transform_path(line.get_path())
         if seen is not None and path.intersects_bbox(seen, filled=False):
-            found.append(f"sits over {_name(line)}")
-    return found
+            crossing.append(line)
+    return crossing
 
 
 def _off_the_page(label, renderer) -> bool:
@@ -436,11 +444,7 @@ def figure_defects(fig) -> list[str]:
 def _decorations_overlapping(fig, renderer) -> list[str]:
     """Labels of different axes, or of the figure, over one another: one panel's axis label
     over its neighbour's, a figure legend or title over an axes' label."""
-    owned = [(ax, label) for ax in fig.axes for label in
-             (ax.title, ax.xaxis.label, ax.yaxis.label) if label.get_visible() and
-             label.get_text().strip()]  # fmt: skip
-    owned += [(fig, text) for text in fig.texts if text.get_text().strip()]
-    owned += [(fig, legend) for legend in fig.legends]
+    owned = _decorations(fig)
     found = []
     for i, (owner, label) in enumerate(owned):
         for other_owner, other in owned[i + 1 :]:
@@ -448,6 +452,17 @@ def _decorations_overlapping(fig, renderer) -> list[str]:
                 if _box(label, renderer).overlaps(_box(other, renderer)):
                     found.append(f"{_name(label)} overlaps {_name(other)}")
     return found
+
+
+def _decorations(fig) -> list[tuple]:
+    """Each label shown around the panels, with its owner: the axes' titles and axis labels,
+    the figure's texts and legends."""
+    owned = [(ax, label) for ax in fig.axes for label in
+             (ax.title, ax.xaxis.label, ax.yaxis.label) if label.get_visible() and
+             label.get_text().strip()]  # fmt: skip
+    owned += [(fig, text) for text in fig.texts if text.get_text().strip()]
+    owned += [(fig, legend) for legend in fig.legends]
+    return owned
 
 
 # Metadata matplotlib would otherwise fill with its version and the time.

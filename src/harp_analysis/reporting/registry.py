@@ -74,20 +74,8 @@ class RegistryEntry:
 
 def _entry(raw: dict, position: int, source: Path) -> RegistryEntry:
     where = f"{source.name} entry {position} ({raw.get('number', '?')})"
-    missing = [name for name in _FIELDS if name not in raw]
-    unknown = set(raw) - {*_FIELDS, "caption", "extension", "no_number"}
-    if unknown:
-        raise ValueError(f"{where}: unknown field(s) {', '.join(sorted(unknown))}")
-    if missing:
-        raise ValueError(f"{where}: missing field(s) {', '.join(missing)}")
-    if raw["class"] not in CLASSES:
-        raise ValueError(f"{where}: class {raw['class']!r} is not one of {CLASSES}")
-    if raw["status"] not in STATUSES:
-        raise ValueError(f"{where}: status {raw['status']!r} is not one of {STATUSES}")
-    if raw["status"] != "reproduced" and not raw["reason"].strip():
-        raise ValueError(f"{where}: status {raw['status']!r} needs a reason")
-    if raw["status"] in DRAWN and not (raw["notebook"] and raw["file"]):
-        raise ValueError(f"{where}: a {raw['status']} entry needs its notebook and file")
+    _check_fields(raw, where)
+    _check_status(raw, where)
     extension = raw.get("extension", False)
     if not isinstance(extension, bool):
         raise ValueError(f"{where}: extension must be true or false; got {extension!r}")
@@ -108,6 +96,29 @@ def _entry(raw: dict, position: int, source: Path) -> RegistryEntry:
         extension,
         raw.get("no_number", ""),
     )
+
+
+def _check_fields(raw: dict, where: str) -> None:
+    """Every field known, and the required ones there."""
+    missing = [name for name in _FIELDS if name not in raw]
+    unknown = set(raw) - {*_FIELDS, "caption", "extension", "no_number"}
+    if unknown:
+        raise ValueError(f"{where}: unknown field(s) {', '.join(sorted(unknown))}")
+    if missing:
+        raise ValueError(f"{where}: missing field(s) {', '.join(missing)}")
+
+
+def _check_status(raw: dict, where: str) -> None:
+    """The class and status of the vocabulary, a reason for every status but reproduced, and a
+    drawn figure's notebook and file."""
+    if raw["class"] not in CLASSES:
+        raise ValueError(f"{where}: class {raw['class']!r} is not one of {CLASSES}")
+    if raw["status"] not in STATUSES:
+        raise ValueError(f"{where}: status {raw['status']!r} is not one of {STATUSES}")
+    if raw["status"] != "reproduced" and not raw["reason"].strip():
+        raise ValueError(f"{where}: status {raw['status']!r} needs a reason")
+    if raw["status"] in DRAWN and not (raw["notebook"] and raw["file"]):
+        raise ValueError(f"{where}: a {raw['status']} entry needs its notebook and file")
 
 
 def _check_extension(raw: dict, where: str) -> None:

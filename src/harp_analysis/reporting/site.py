@@ -7,12 +7,13 @@ and the check of the HTML Sphinx builds from them.
    Sphinx reads: the hand-written pages of ``docs/`` (``conf.py``, ``_templates`` and
    ``_static`` stay there, read with ``sphinx-build -c docs``), the chapter notebooks 01-08
    run once (:func:`run_notebooks`), the committed figures, and the pages written here from the
-   registry and the ledger (:func:`write_pages`): the gallery, a page per figure, the ledger,
-   the HARP data's provenance, the benchmark results and the list of curated names;
+   registry and the ledger (:func:`write_pages`, from the Jinja2 templates of
+   ``docs/_templates/pages``): the gallery, a page per figure, the ledger, the HARP data's
+   provenance, the benchmark results and the list of curated names;
 2. ``sphinx-build -W -n`` builds the HTML, every warning an error;
 3. ``python -m harp_analysis.reporting.site check build/docs/html`` checks every internal
    link, anchor and image of the built pages, and that none loads anything from outside
-   (:func:`check_site`).
+   (:func:`.link_check.check_site`).
 
 What takes minutes is done once and cached in ``build/docs/cache`` under a digest of what it
 depends on (:func:`digest`): the ledger's evaluation (:func:`evaluated_ledger`, about 1.5 min,
@@ -40,19 +41,18 @@ import subprocess
 import sys
 import time
 from collections import Counter
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import asdict, dataclass, replace
 from datetime import UTC, datetime
-from html.parser import HTMLParser
 from pathlib import Path
 from typing import Any
-from urllib.parse import unquote, urlsplit
 
 from ..foundation import paths
 from .build import execute_notebook
-from .gallery import caption_text, reason_text
+from .gallery import SHOWN, caption_text, reason_text
 from .ledger import VERDICTS, evaluate_all, evaluate_measurements, known_to, printed_digits
+from .link_check import check_site, html_pages
 from .registry import DRAWN, RegistryEntry, load_registry
 
 __all__ = [
@@ -64,11 +64,11 @@ __all__ = [
     "run_benchmarks",
     "write_pages",
     "assemble",
-    "check_site",
     "main",
     "CHAPTER_NOTEBOOKS",
     "EXPLORER_NOTEBOOK",
     "LEDGER_COLUMNS",
+    "TEMPLATES",
     "THUMBNAIL_WIDTH_PX",
 ]
 
@@ -76,15 +76,11 @@ __all__ = [
 EXPLORER_NOTEBOOK = "00_explorer.ipynb"
 #: The chapter notebooks, each a page of the site, in order (every notebook but the explorer).
 CHAPTER_NOTEBOOKS = "[0-9][0-9]_*.ipynb"
-#: The statuses as the gallery shows them (as figures/README.md).
-SHOWN = {
-    "reproduced": "reproduced",
-    "deviates": "drawn, deviates",
-    "partial": "partial",
-    "pending": "pending",
-    "not reproducible": "not reproducible",
-    "extension": "drawn, extension",
-}
+#: The templates of the generated pages (Jinja2 writing Markdown), under the checkout: the prose
+#: and layout are there, what they show is gathered here (:func:`write_pages`). Sphinx never
+#: reads them as pages: ``docs/_templates`` is not copied to the source tree, and ``.j2`` is no
+#: source suffix.
+TEMPLATES = Path("docs/_templates/pages")
 #: The ledger page's columns and their shares of its width (%): every row reads whole in the
 #: window, the explanation (the reason behind a verdict) the widest.
 LEDGER_COLUMNS = (
@@ -356,438 +352,133 @@ def _slug(number: str) -> str:
     return f"{kind}-{bare.lower().replace('.', '-')}"
 
 
-#: The front matter of a page without the theme's column of its contents: the gallery and each
-#: figure's page give the figures that width.
-_WITHOUT_CONTENTS = ("---", "html_theme.sidebar_secondary.remove: true", "---")
-
-
 def _badge(status: str) -> str:
     """A registry status as a coloured badge with its words (site.css: ``status-badge``)."""
     return f"[{_md(SHOWN[status])}]{{.status-badge .status-{status.replace(' ', '-')}}}"
 
 
-def _claim_label(claim_id: str) -> str:
-    return f"claim-{claim_id}"
-
-
-def _row_link(row: LedgerRow) -> str:
-    return f"{{ref}}`{row.id} <{_claim_label(row.id)}>`"
-
-
-def _function_link(row: LedgerRow) -> str:
-    return f"{{py:obj}}`{row.function} <{row.module}.{row.function}>`"
-
-
-def _figure_link(number: str, entries: dict[str, RegistryEntry]) -> str:
-    entry = entries.get(number)
-    label = entry.label if entry else number
-    return f"{{doc}}`{label} </gallery/{_slug(number)}>`" if entry else _md(label)
-
-
-def _regenerate(entry: RegistryEntry) -> str:
-    if entry.kind == "table" or " " in entry.number:
-        return f'.venv/bin/python -m harp_analysis.reporting.build --figure "{entry.number}"'
-    return f"make figures FIG={entry.number}"
-
-
-def _rows_table(rows: list[LedgerRow]) -> list[str]:
-    """A figure page's ledger rows: each linked to its row of the ledger and to the API entry of
-    the function that computes it."""
-    lines = [
-        ":::{list-table}",
-        ":header-rows: 1",
-        ":class: ledger-rows",
-        "",
-        "* - row",
-        "  - the text states",
-        "  - text",
-        "  - computed",
-        "  - unit",
-        "  - verdict",
-        "  - computed by",
-    ]
-    for row in rows:
-        lines += [
-            f"* - {_row_link(row)}",
-            f"  - {_md(row.statement)}",
-            f"  - {_md(row.text)}",
-            f"  - {_md(row.computed)}",
-            f"  - {_md(row.unit)}",
-            f"  - **{row.verdict}**",
-            f"  - {_function_link(row)}",
-        ]
-    return [*lines, ":::"]
-
-
-def _figure_page(entry: RegistryEntry, rows: list[LedgerRow], chapter_pages: dict[str, str]) -> str:
-    lines = [
-        *_WITHOUT_CONTENTS,
-        f"({_slug(entry.number)})=",
-        f"# {entry.label}: {_md(entry.title)}",
-        "",
-    ]
-    drawn = entry.status in DRAWN and entry.file
-    text_caption = [
-        "::::{container} text-caption",
-        "**The dissertation's caption**" if not entry.extension else "**The project's figure**",
-        "",
-        f"*{_md(entry.title)}*",
-        "",
-        f"Status: {_badge(entry.status)} (class: {entry.figure_class}).",
-        "",
-        _md(entry.reason) if entry.reason else "",
-        "",
-        f"No ledger row: {_md(entry.no_number)}" if entry.no_number else "",
-        "::::",
-    ]
-    if drawn and entry.file.endswith(".png"):
-        pdf = entry.file[:-4] + ".pdf"
-        shown = [  # scaled to the page's width, so Sphinx links it to the full-size image
-            f":::{{figure}} ../figures/{entry.file}",
-            f":alt: {entry.label} as the project draws it",
-            ":class: project-figure",
-            ":width: 100%",
-            "",
-            _md(entry.caption) if entry.caption else f"{entry.label}, as the project draws it.",
-            ":::",
-            "",
-            f"Click the figure for its full size; vector: {{download}}`{pdf} <../figures/{pdf}>`",
-        ]
-    elif drawn:  # a table, written as Markdown
-        shown = [f":::{{include}} ../figures/{entry.file}", ":heading-offset: 1", ":::"]
-    else:
-        shown = ["*Not drawn: see the status.*"]
-    lines += [
-        ":::::{container} figure-pair",
-        "::::{container} project-side",
-        *shown,
-        "::::",
-        "",
-        *text_caption,
-        ":::::",
-        "",
-    ]
-    if entry.notebook:
-        chapter = chapter_pages.get(entry.notebook)
-        where = f"{{doc}}`{chapter}`" if chapter else f"`notebooks/{entry.notebook}`"
-        lines += [
-            f"Drawn by {where} (`notebooks/{entry.notebook}`). To regenerate it into `figures/`:",
-            "",
-            "```sh",
-            _regenerate(entry),
-            "```",
-            "",
-        ]
-    lines += ["## Ledger rows about it", ""]
-    if rows:
-        counts = Counter(row.verdict for row in rows)
-        lines += [
-            ", ".join(f"{counts[v]} {v}" for v in VERDICTS if counts[v]) + ". Each row links "
-            "to its line of the {doc}`ledger </ledger>` (the explanation, the tolerance) and "
-            "to the function that computes it.",
-            "",
-            *_rows_table(rows),
-        ]
-    else:
-        lines += ["No ledger row speaks about it."]
-    return "\n".join(lines) + "\n"
-
-
-def _gallery_index(
-    entries: list[RegistryEntry], tied: dict[str, list[LedgerRow]], pages: list[str]
+def _counted(
+    values: Iterable[str], names: Sequence[str] | Mapping[str, str], every: bool = False
 ) -> str:
-    dissertation = [e for e in entries if not e.extension]
-    extensions = [e for e in entries if e.extension]
-    counts = Counter(e.status for e in dissertation)
-    lines = [
-        *_WITHOUT_CONTENTS,
-        "# Gallery",
-        "",
-        "Every figure and table of the dissertation, with the text's own caption, the project's "
-        "figure, its status and the ledger rows about it (each linked to its value, its "
-        "verdict and the function that computes it). A figure is *reproduced* when every "
-        "number the text states about it reproduces, *drawn, deviates* when one does not. "
-        "Generated from `registry/figures.toml` and the evaluated ledger.",
-        "",
-        ", ".join(f"{counts[s]} {SHOWN[s]}" for s in SHOWN if counts[s])
-        + f" ({len(dissertation)} in "
-        f"all); {len(extensions)} figures of the project's own beyond the dissertation.",
-        "",
-        "```{toctree}",
-        ":hidden:",
-        "",
-        *pages,
-        "```",
-        "",
-    ]
-    groups = (("The dissertation", dissertation), ("Beyond the dissertation", extensions))
-    for title, group in groups:
-        lines += [
-            f"## {title}",
-            "",
-            ":::{list-table}",
-            ":header-rows: 1",
-            ":class: gallery-table",
-            ":widths: 24 37 20 19",
-            "",
-            "* - figure",
-            "  - caption",
-            "  - status",
-            "  - ledger rows",
-        ]
-        for e in group:
-            counts = Counter(row.verdict for row in tied.get(e.number, []))
-            verdicts = ", ".join(f"{counts[v]} {v}" for v in VERDICTS if counts[v])
-            if e.status in DRAWN and e.file.endswith(".png"):
-                shown = (
-                    f"[![{e.label}](thumbnails/{_thumbnail_name(e.file)})]({_slug(e.number)}.md)"
-                )
-            else:
-                shown = "*a table*" if e.status in DRAWN else "*not drawn*"
-            lines += [
-                f"* - {shown}",
-                "",
-                f"    {{doc}}`{e.label} <{_slug(e.number)}>`",
-                f"  - {_md(e.title if not e.extension else e.caption or e.title)}",
-                f"  - {_badge(e.status)}",
-                f"  - {verdicts}",
-            ]
-        lines += [":::", ""]
-    return "\n".join(lines)
+    """How many of ``values`` are each of ``names``, in their order ("3 reproduces, 1 close"),
+    each shown as ``names`` maps it (:data:`SHOWN`) or as it is; one with none is left out
+    unless ``every``."""
+    counts = Counter(values)
+    shown = names if isinstance(names, Mapping) else {name: name for name in names}
+    return ", ".join(f"{counts[n]} {shown[n]}" for n in shown if every or counts[n])
 
 
-def _ledger_page(all_rows: list[LedgerRow], entries: dict[str, RegistryEntry]) -> str:
-    rows = [row for row in all_rows if row.kind == "claim"]
-    extensions = [row for row in all_rows if row.kind == "extension"]
-    counts = Counter(row.verdict for row in rows)
-    lines = [
-        "# The ledger",
-        "",
-        "The dissertation's checkable statements, each recomputed by the package function "
-        "named beside it, with its tolerance and an honest verdict; generated from "
-        "`registry/claims.toml`, evaluated when the site was built (as `figures/CLAIMS.md`). "
-        "Statements the text makes without data for a computation are listed, with the reason, "
-        "in `registry/no_data.md`.",
-        "",
-        "- **reproduces**: the computed value lies within the tolerance of the text's (for a "
-        "bound, on the stated side of it).",
-        "- **close**: outside the tolerance but within the close tolerance; the explanation "
-        "says why.",
-        "- **does not reproduce**: outside the close tolerance; the explanation gives the best "
-        "reason found.",
-        "- **recovered**: within the tolerance, of a value fitted to the very number it is "
-        "scored against: evidence that the fit holds, not that the text reproduces.",
-        "",
-        f"{len(rows)} rows: " + ", ".join(f"{counts[v]} {v}" for v in VERDICTS) + ". "
-        "Filter by chapter and verdict, or sort by a column (click its heading); the row's id "
-        "is its link.",
-        "",
-        ":::{list-table}",
-        ":header-rows: 1",
-        ":class: ledger-table",
-        f":widths: {' '.join(str(width) for _, width in LEDGER_COLUMNS)}",
-        "",
-        f"* - {LEDGER_COLUMNS[0][0]}",
-        *(f"  - {name}" for name, _ in LEDGER_COLUMNS[1:]),
-    ]
+def _pages_environment() -> Any:
+    """The Jinja2 environment of :data:`TEMPLATES`: whole lines kept as written (a block tag's
+    line left out), no escaping (the pages are Markdown; :func:`_md` escapes text where a
+    template asks), an undefined name an error."""
+    import jinja2
+
+    environment = jinja2.Environment(
+        loader=jinja2.FileSystemLoader(paths.ROOT / TEMPLATES),
+        undefined=jinja2.StrictUndefined,
+        keep_trailing_newline=True,
+        trim_blocks=True,
+        lstrip_blocks=True,
+        autoescape=False,
+    )
+    environment.filters |= {
+        "md": _md,
+        "slug": _slug,
+        "badge": _badge,
+        "counted": _counted,
+        "thumbnail_name": _thumbnail_name,
+    }
+    environment.globals |= {
+        "SHOWN": SHOWN,
+        "VERDICTS": VERDICTS,
+        "DRAWN": DRAWN,
+        "LEDGER_COLUMNS": LEDGER_COLUMNS,
+    }
+    return environment
+
+
+def _data_files() -> list[Path]:
+    """The HARP data's files the provenance page offers for download."""
+    harp = paths.ROOT / "data" / "harp"
+    return [*sorted(harp.glob("*.tsv")), harp / "SHA256SUMS"]
+
+
+def _tied(rows: list[LedgerRow]) -> dict[str, list[LedgerRow]]:
+    """The rows of ``rows`` about each figure, by its number."""
+    tied: dict[str, list[LedgerRow]] = {}
     for row in rows:
-        figures = ", ".join(_figure_link(number, entries) for number in row.figures)
-        lines += [
-            f"* - ({_claim_label(row.id)})=",
-            "",
-            f"    `{row.id}`",
-            f"  - {row.chapter}",
-            f"  - {_md(row.source)}",
-            f"  - {_md(row.statement)}",
-            f"  - {_md(row.text)}",
-            f"  - {_md(row.computed)}",
-            f"  - {_md(row.unit)}",
-            f"  - {_md(row.tolerance)}",
-            f"  - {row.verdict}",
-            f"  - {figures}",
-            f"  - {_function_link(row)}",
-            f"  - {_md(row.explanation)}",
-        ]
-    lines += [
-        ":::",
-        "",
-        "## Extension results: measured, not scored",
-        "",
-        "What the project measures of its own work beyond the text (its improved MKS, readings "
-        "resting on input sizes or hypotheses the text does not give): each answers a passage "
-        "of the text but states nothing the text claims, so it carries no verdict, only its "
-        f"measured value ({len(extensions)} results).",
-        "",
-        ":::{list-table}",
-        ":header-rows: 1",
-        ":class: extension-table",
-        ":widths: 16 28 10 46",
-        "",
-        "* - id",
-        "  - what is measured",
-        "  - measured",
-        "  - explanation",
-    ]
-    for row in extensions:
-        lines += [
-            f"* - ({_claim_label(row.id)})=",
-            "",
-            f"    `{row.id}`",
-            f"  - {_md(row.statement)} (answers {_md(row.source)}; {_function_link(row)})",
-            f"  - {_md(row.computed)} {_md(row.unit)}",
-            f"  - {_md(row.explanation)}",
-        ]
-    return "\n".join([*lines, ":::", ""])
+        for number in row.figures:
+            tied.setdefault(number, []).append(row)
+    return tied
 
 
-def _summary(entries: list[RegistryEntry], all_rows: list[LedgerRow]) -> str:
-    """The landing page's generated part: what is reproduced, what deviates, the ledger's
-    verdicts."""
-    rows = [row for row in all_rows if row.kind == "claim"]
-    dissertation = [e for e in entries if not e.extension]
-    counts = Counter(e.status for e in dissertation)
-    verdicts = Counter(row.verdict for row in rows)
-
-    def listed(status: str, with_reason: bool) -> list[str]:
-        return [
-            f"- {{doc}}`{e.label} </gallery/{_slug(e.number)}>` ({_md(e.title)})"
-            + (f": {_md(e.reason)}" if with_reason and e.reason else "")
-            for e in dissertation
-            if e.status == status
-        ]
-
-    return "\n".join(
-        [
-            f"Of the dissertation's {len(dissertation)} figures and tables, "
-            + ", ".join(f"{counts[s]} {SHOWN[s]}" for s in SHOWN if counts[s])
-            + f". Of the {len(rows)} rows of the {{doc}}`ledger </ledger>` (the text's "
-            "checkable statements, each recomputed by the package), "
-            + ", ".join(f"{verdicts[v]} {v}" for v in VERDICTS)
-            + f"; and {len(all_rows) - len(rows)} extension results, the project's own "
-            "measurements beyond the text, unscored.",
-            "",
-            "### Reproduced",
-            "",
-            *listed("reproduced", False),
-            "",
-            "### Drawn, deviating from the text",
-            "",
-            *listed("deviates", True),
-            "",
-            "### Partial, and not reproducible",
-            "",
-            *listed("partial", True),
-            *listed("not reproducible", True),
-            "",
-        ]
-    )
+def _shared_context(
+    rows: list[LedgerRow], chapter_pages: dict[str, str], entries: list[RegistryEntry]
+) -> dict[str, Any]:
+    """What every page's template is given: the registry's ``entries`` (``dissertation`` and
+    ``extensions``, and the ``registry`` by number), the ledger's ``rows`` (``claims``, scored,
+    and ``measured``, the extension results; ``tied``, those about each figure by its number)
+    and the ``chapters`` (each notebook's page)."""
+    return {
+        "entries": entries,
+        "dissertation": [e for e in entries if not e.extension],
+        "extensions": [e for e in entries if e.extension],
+        "registry": {e.number: e for e in entries},
+        "claims": [row for row in rows if row.kind == "claim"],
+        "measured": [row for row in rows if row.kind == "extension"],
+        "tied": _tied(rows),
+        "chapters": chapter_pages,
+    }
 
 
-def _extension_list(entries: list[RegistryEntry]) -> str:
-    return "\n".join(
-        f"- {{doc}}`{e.label} </gallery/{_slug(e.number)}>`: {_md(e.caption or e.title)}"
-        for e in entries
-        if e.extension
-    )
-
-
-def _uncertainties() -> str:
-    """The error budget's uncertainties (:data:`harp_analysis.analyses.error_budget.CHAPTER_7B`)
-    as a table: each input, its standard deviation and its basis."""
-    from ..analyses.error_budget import CHAPTER_7B
-
-    lines = [
-        ":::{list-table}",
-        ":header-rows: 1",
-        "",
-        "* - input",
-        "  - the launch's field",
-        "  - 1 sd",
-        "  - basis",
-    ]
-    for u in CHAPTER_7B:
-        lines += [
-            f"* - {_md(u.name)}",
-            f"  - `{u.field}`",
-            f"  - {u.sd:.4g}",
-            f"  - {_md(u.basis)}",
-        ]
-    return "\n".join([*lines, ":::", ""])
-
-
-def _benchmarks_page(results: dict | None) -> str:
-    lines = [
-        "# Benchmarks",
-        "",
-        "Each `benchmarks/bench_*.py` times an engine against a reference measured in the same "
-        "run, and says what that reference computes and how accurately (`make benchmark` runs "
-        "them all; `make test` runs each in a short smoke mode, asserting no time).",
-        "",
-    ]
-    if not results:
-        not_run = "*Not run for this build* (`HARP_ANALYSIS_DOCS_BENCHMARKS=off`)."
-        return "\n".join([*lines, not_run, ""])
-    mode = {
-        "full": "at `make benchmark`'s sizes",
-        "smoke": "in the smoke mode: tiny sizes, one round (the timings mean little)",
-    }[results["mode"]]
-    lines += [
-        f"The output below is of one run {mode}, on {results['date']}, on the machine that "
-        f"built this site ({results['machine']}); the numbers are those of that run.",
-        "",
-    ]
-    for name, run in results["benchmarks"].items():
-        lines += [
-            f"## {name}",
-            "",
-            f"{run['seconds']:.0f} s in all.",
-            "",
-            "```text",
-            run["output"].rstrip().replace("```", "'''"),
-            "```",
-            "",
-        ]
-    return "\n".join(lines)
-
-
-def _curated_page() -> str:
+def _pages(
+    rows: list[LedgerRow],
+    chapter_pages: dict[str, str],
+    benchmarks: dict | None,
+    entries: list[RegistryEntry],
+) -> dict[str, str]:
+    """Each generated page's text by its name in the source tree, rendered from
+    :data:`TEMPLATES`, each given :func:`_shared_context` and what it alone shows."""
     import harp_analysis
 
-    lines = [
-        "# The curated names",
-        "",
-        "`harp_analysis.__all__`: the names a user starts from, importable from the package "
-        "itself (`from harp_analysis import simulate_3dof`), each imported on first use. Each "
-        "is documented in the module that defines it:",
-        "",
-    ]
-    for name in harp_analysis.__all__:
-        if name == "__version__":
-            lines.append(f"- `__version__`: `{harp_analysis.__version__}`, this site's version")
-            continue
-        module = harp_analysis._API[name]
-        where = f"harp_analysis.{module}"
-        lines.append(f"- {{py:obj}}`{name} <{where}.{name}>` ({{mod}}`{where}`)")
-    return "\n".join([*lines, ""])
+    from ..analyses.error_budget import CHAPTER_7B
 
+    shared = _shared_context(rows, chapter_pages, entries)
+    tied = shared["tied"]
+    environment = _pages_environment()
 
-def _chapters_index(pages: list[str]) -> str:
-    return "\n".join(
-        [
-            "# The chapters",
-            "",
-            "The reproduction read like a paper: one page per notebook, run once when the site "
-            "was built, with its figures and numbers in place (each notebook imports the "
-            "package, draws and explains; the physics lives in the package).",
-            "",
-            "```{toctree}",
-            ":maxdepth: 1",
-            "",
-            *pages,
-            "```",
-            "",
-        ]
-    )
+    def render(template: str, **context: Any) -> str:
+        return environment.get_template(template).render(**shared, **context)
+
+    harp = paths.ROOT / "data" / "harp"
+    pages = {
+        f"gallery/{_slug(e.number)}.md": render(
+            "figure.md.j2", entry=e, rows=tied.get(e.number, [])
+        )
+        for e in entries
+    }
+    return pages | {
+        "gallery/index.md": render("gallery.md.j2"),
+        "ledger.md": render("ledger.md.j2"),
+        "_generated/summary.md": render("summary.md.j2"),
+        "_generated/extensions.md": render("extensions.md.j2"),
+        "_generated/uncertainties.md": render("uncertainties.md.j2", uncertainties=CHAPTER_7B),
+        "benchmarks.md": render("benchmarks.md.j2", results=benchmarks),
+        "api/curated.md": render(
+            "curated.md.j2",
+            names=harp_analysis.__all__,
+            modules=harp_analysis._API,
+            version=harp_analysis.__version__,
+        ),
+        "chapters/index.md": render("chapters.md.j2"),
+        "provenance/index.md": render(
+            "provenance.md.j2",
+            readme=(harp / "README.md").read_text(),
+            files=[path.name for path in _data_files()],
+        ),
+        "provenance/radar.md": (harp / "radar" / "README.md").read_text(),
+    }
 
 
 def _copy_if_changed(source: Path, target: Path) -> None:
@@ -819,43 +510,12 @@ def write_pages(
     benchmarks, the curated names; ``chapter_pages`` maps each notebook to its page's name;
     ``entries``, the registry as :func:`quoted_registry` gives it (by default, quoted now)."""
     entries = quoted_registry() if entries is None else entries
-    by_number = {e.number: e for e in entries}
-    tied: dict[str, list[LedgerRow]] = {}
-    for row in rows:
-        for number in row.figures:
-            tied.setdefault(number, []).append(row)
-    pages: dict[str, str] = {}
-    figure_pages = []
-    for e in entries:
-        pages[f"gallery/{_slug(e.number)}.md"] = _figure_page(
-            e, tied.get(e.number, []), chapter_pages
-        )
-        figure_pages.append(_slug(e.number))
-    pages["gallery/index.md"] = _gallery_index(entries, tied, figure_pages)
-    pages["ledger.md"] = _ledger_page(rows, by_number)
-    pages["_generated/summary.md"] = _summary(entries, rows)
-    pages["_generated/extensions.md"] = _extension_list(entries)
-    pages["_generated/uncertainties.md"] = _uncertainties()
-    pages["benchmarks.md"] = _benchmarks_page(benchmarks)
-    pages["api/curated.md"] = _curated_page()
-    pages["chapters/index.md"] = _chapters_index(list(chapter_pages.values()))
-    harp = paths.ROOT / "data" / "harp"
-    readme = (harp / "README.md").read_text()
-    data_files = sorted(p.name for p in harp.glob("*.tsv")) + ["SHA256SUMS"]
-    pages["provenance/index.md"] = (
-        readme.replace("](radar/README.md)", "](radar.md)")
-        + "\n\n## The files\n\n"
-        + "\n".join(f"- {{download}}`{name} <data/{name}>`" for name in data_files)
-        + "\n\n```{toctree}\n:hidden:\n\nradar\n```\n"
-    )
-    pages["provenance/radar.md"] = (harp / "radar" / "README.md").read_text()
-    written = []
+    pages = _pages(rows, chapter_pages, benchmarks, entries)
     for name, text in pages.items():
         _write_if_changed(target / name, text)
-        written.append(target / name)
-    for name in data_files:
-        _copy_if_changed(harp / name, target / "provenance" / "data" / name)
-    return written
+    for path in _data_files():
+        _copy_if_changed(path, target / "provenance" / "data" / path.name)
+    return [target / name for name in pages]
 
 
 def _thumbnail_name(figure: str) -> str:
@@ -897,6 +557,44 @@ def _figures_for_site(target: Path, cache: Path) -> None:
             )
 
 
+def _copy_hand_written(docs: Path, target: Path) -> None:
+    """The hand-written pages of ``docs`` (not its configuration, :data:`_CONFIGURATION`) and
+    the root files a page includes (CHANGELOG.md, CITATION.cff), copied into ``target``."""
+    for path in sorted(docs.rglob("*")):
+        relative = path.relative_to(docs)
+        if path.is_file() and not _CONFIGURATION & set(relative.parts):
+            _copy_if_changed(path, target / relative)
+    for name in ("CHANGELOG.md", "CITATION.cff"):
+        _copy_if_changed(paths.ROOT / name, target / "_root" / name)
+
+
+def _notebooks_and_ledger(
+    notebooks: list[Path], cache: Path, execute: bool, jobs: int
+) -> tuple[dict[Path, Path], list[LedgerRow]]:
+    """Each notebook as executed (:func:`run_notebooks`; as it is unless ``execute``) and the
+    evaluated ledger: the ledger in this process while the notebooks run in their kernels."""
+    start = time.perf_counter()
+    with ThreadPoolExecutor(max_workers=1) as background:
+        running = background.submit(run_notebooks, notebooks, cache, jobs) if execute else None
+        rows = evaluated_ledger(cache)
+        executed = running.result() if running else {path: path for path in notebooks}
+    print(f"{time.perf_counter() - start:6.1f} s  notebooks and ledger", flush=True)
+    return executed, rows
+
+
+def _chapters_for_site(target: Path, executed: dict[Path, Path]) -> dict[str, str]:
+    """The notebooks of ``executed`` (each notebook: its executed copy) as the chapters' pages
+    of ``target``, any other left from an earlier build (renamed or removed) taken out: each
+    notebook's name mapped to its page's."""
+    chapters = target / "chapters"
+    for notebook, run in executed.items():
+        _copy_if_changed(run, chapters / notebook.name)
+    for stale in chapters.glob("*.ipynb"):
+        if stale.name not in {notebook.name for notebook in executed}:
+            stale.unlink()
+    return {notebook.name: f"/chapters/{notebook.stem}" for notebook in executed}
+
+
 def assemble(
     target: Path,
     docs: Path | None = None,
@@ -909,134 +607,19 @@ def assemble(
     hand-written pages of ``docs``, the chapter notebooks (run once and cached if ``execute``),
     the committed figures, the root files a page includes (CHANGELOG.md, CITATION.cff) and the
     generated pages."""
-    docs = Path(docs) if docs else paths.ROOT / "docs"
     cache = Path(cache) if cache else target.parent / "cache"
     cache.mkdir(parents=True, exist_ok=True)
-    for path in sorted(docs.rglob("*")):
-        relative = path.relative_to(docs)
-        if path.is_file() and not _CONFIGURATION & set(relative.parts):
-            _copy_if_changed(path, target / relative)
-    for name in ("CHANGELOG.md", "CITATION.cff"):
-        _copy_if_changed(paths.ROOT / name, target / "_root" / name)
+    _copy_hand_written(Path(docs) if docs else paths.ROOT / "docs", target)
     _figures_for_site(target, cache / "thumbnails")
     notebooks = [
         path
         for path in sorted(paths.NOTEBOOKS_DIR.glob(CHAPTER_NOTEBOOKS))
         if path.name != EXPLORER_NOTEBOOK
     ]
-    start = time.perf_counter()
-    with ThreadPoolExecutor(max_workers=1) as background:
-        # the ledger in this process while the notebooks run in their kernels
-        running = background.submit(run_notebooks, notebooks, cache, jobs) if execute else None
-        rows = evaluated_ledger(cache)
-        executed = running.result() if running else {path: path for path in notebooks}
-    print(f"{time.perf_counter() - start:6.1f} s  notebooks and ledger", flush=True)
-    chapter_pages = {}
-    for path in notebooks:
-        _copy_if_changed(executed[path], target / "chapters" / path.name)
-        chapter_pages[path.name] = f"/chapters/{path.stem}"
+    executed, rows = _notebooks_and_ledger(notebooks, cache, execute, jobs)
+    chapter_pages = _chapters_for_site(target, executed)
     results = None if benchmarks == "off" else run_benchmarks(cache, benchmarks)
     write_pages(target, rows, chapter_pages, results, quoted_registry(cache))
-    expected = {target / "chapters" / path.name for path in notebooks}
-    for stale in (target / "chapters").glob("*.ipynb"):  # a notebook renamed or removed
-        if stale not in expected:
-            stale.unlink()
-
-
-# --- the check of the built site --------------------------------------------------------------
-
-
-class _Page(HTMLParser):
-    """The ids, links and resources of one HTML page."""
-
-    def __init__(self) -> None:
-        super().__init__(convert_charrefs=True)
-        self.ids: set[str] = set()
-        self.links: list[str] = []
-        self.resources: list[tuple[str, str]] = []  # (tag, url)
-
-    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
-        values = {name: value for name, value in attrs if value is not None}
-        for name in ("id", "name") if tag == "a" else ("id",):
-            if name in values:
-                self.ids.add(values[name])
-        if tag == "a" and "href" in values:
-            self.links.append(values["href"])
-        if tag in ("img", "script", "iframe", "source", "embed", "audio", "video"):
-            if "src" in values:
-                self.resources.append((tag, values["src"]))
-        if tag == "link" and "href" in values:
-            self.resources.append((tag, values["href"]))
-        if tag == "object" and "data" in values:
-            self.resources.append((tag, values["data"]))
-        for srcset in (values.get("srcset"),):
-            if srcset:
-                for part in srcset.split(","):
-                    self.resources.append((tag, part.split()[0]))
-
-
-_CSS_URL = re.compile(r"""url\(\s*['"]?([^'")]+)['"]?\s*\)|@import\s+['"]([^'"]+)['"]""")
-
-
-def _external(url: str) -> bool:
-    parts = urlsplit(url)
-    return bool(parts.scheme and parts.scheme not in ("data", "file")) or url.startswith("//")
-
-
-def check_site(site: Path) -> list[str]:
-    """What is wrong with the built site in ``site``: every link of every page to another page
-    of the site must reach an existing file and, with a fragment, an element with that id; every
-    image, script and stylesheet must be there; no page or stylesheet may load anything from
-    outside (a CDN, a web font), so that the site works offline. Links out of the site (``http``,
-    ``mailto``) are allowed but never followed. Empty when all is well."""
-    site = Path(site).resolve()
-    pages: dict[Path, _Page] = {}
-    for path in sorted(site.rglob("*.html")):
-        if path.relative_to(site).parts[0] == "_static":
-            continue  # the theme's templates copied as they are (webpack-macros.html), no page
-        parser = _Page()
-        parser.feed(path.read_text(errors="replace"))
-        pages[path.resolve()] = parser
-    problems = []
-    if not pages:
-        return [f"{site}: no HTML page"]
-
-    def resolve(base: Path, url: str) -> tuple[Path, str]:
-        parts = urlsplit(url)
-        target = (base.parent / unquote(parts.path)).resolve() if parts.path else base
-        if target.is_dir():
-            target = target / "index.html"
-        return target, unquote(parts.fragment)
-
-    for path, page in pages.items():
-        name = path.relative_to(site).as_posix()
-        for url in page.links:
-            if _external(url) or url.startswith(("mailto:", "javascript:")):
-                continue
-            target, fragment = resolve(path, url)
-            if not target.is_file():
-                problems.append(f"{name}: link {url!r} reaches no file")
-            elif fragment and target.suffix == ".html" and fragment not in pages[target].ids:
-                problems.append(f"{name}: link {url!r} reaches no element id={fragment!r}")
-        for tag, url in page.resources:
-            if _external(url):
-                problems.append(f"{name}: <{tag}> loads {url!r} from outside the site")
-                continue
-            if url.startswith("data:"):
-                continue
-            target, _ = resolve(path, url)
-            if not target.is_file():
-                problems.append(f"{name}: <{tag}> {url!r} is missing")
-    for css in sorted(site.rglob("*.css")):
-        for match in _CSS_URL.finditer(css.read_text(errors="replace")):
-            url = match.group(1) or match.group(2)
-            if url.startswith(("data:", "#")):
-                continue
-            if _external(url):
-                problems.append(f"{css.relative_to(site)}: loads {url!r} from outside the site")
-            elif not (css.parent / unquote(urlsplit(url).path)).is_file():
-                problems.append(f"{css.relative_to(site)}: {url!r} is missing")
-    return problems
 
 
 # --- command line -----------------------------------------------------------------------------
@@ -1061,7 +644,7 @@ def main(argv: list[str] | None = None) -> int:
     problems = check_site(args.site)
     for problem in problems:
         print(problem)
-    pages = sum(p.relative_to(args.site).parts[0] != "_static" for p in args.site.rglob("*.html"))
+    pages = len(list(html_pages(args.site)))
     print(
         f"{pages} pages checked: {len(problems)} problems"
         if problems

@@ -17,7 +17,7 @@ from scipy.optimize import brentq
 
 from ...engines import kepler
 from ...foundation import earth
-from ...foundation.validation import check_choice, check_range, finite_scalar
+from ...foundation.validation import Bounds, check_choice, finite_scalar
 from ...models.atmosphere import standard_density
 from ...models.launch import HP_CHAPTER_2
 from ...models.projectiles import get_projectile
@@ -53,21 +53,12 @@ def tangent_line_ceiling_m(ground_range_m: float, elevation_rad: float) -> float
     it lands). A point at central angle theta is then no farther from the centre than that
     line, R cos(phi)/cos(theta + phi), and theta <= Theta = range/R."""
     radius = earth.RADIUS_M
-    angle = check_range(
-        finite_scalar(ground_range_m, "ground_range_m") / radius,
-        "ground_range_m / RADIUS_M",
-        low=0.0,
-        low_inclusive=False,
-        high=np.pi / 2,
+    angle = Bounds(low=0.0, high=np.pi / 2, low_inclusive=False).check(
+        finite_scalar(ground_range_m, "ground_range_m") / radius, "ground_range_m / RADIUS_M"
     )
-    elevation = check_range(
-        finite_scalar(elevation_rad, "elevation_rad"),
-        "elevation_rad",
-        low=0.0,
-        low_inclusive=False,
-        high=np.pi / 2 - angle,
-        high_inclusive=False,
-    )
+    elevation = Bounds(
+        low=0.0, high=np.pi / 2 - angle, low_inclusive=False, high_inclusive=False
+    ).scalar(elevation_rad, "elevation_rad")
     return radius * math.cos(elevation) / math.cos(angle + elevation) - radius
 
 
@@ -103,21 +94,12 @@ def flat_fire_apogee_and_range_m(
         y(x) = x tan(phi0) - g (e^{2 k' x} - 1 - 2 k' x) / (4 k'^2 u0^2),
 
     which tends to the vacuum parabola as k' -> 0 (McCoy's flat-fire form)."""
-    speed = check_range(finite_scalar(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0)
-    elevation = check_range(
-        finite_scalar(elevation_rad, "elevation_rad"),
-        "elevation_rad",
-        low=0.0,
-        low_inclusive=False,
-        high=np.pi / 2,
-        high_inclusive=False,
+    speed = Bounds(low=0.0).scalar(speed_m_s, "speed_m_s")
+    elevation = Bounds(low=0.0, high=np.pi / 2, low_inclusive=False, high_inclusive=False).scalar(
+        elevation_rad, "elevation_rad"
     )
-    k = check_range(
-        finite_scalar(drag_per_m, "drag_per_m"), "drag_per_m", low=0.0, low_inclusive=False
-    )
-    g = check_range(
-        finite_scalar(gravity_m_s2, "gravity_m_s2"), "gravity_m_s2", low=0.0, low_inclusive=False
-    )
+    k = Bounds(low=0.0, low_inclusive=False).scalar(drag_per_m, "drag_per_m")
+    g = Bounds(low=0.0, low_inclusive=False).scalar(gravity_m_s2, "gravity_m_s2")
     rate, u0, slope = k / math.cos(elevation), speed * math.cos(elevation), math.tan(elevation)
 
     def height(x):
@@ -182,12 +164,7 @@ def mlt_over_3dof_orders(segment_length_m: float = 1000.0) -> float:
     counting rule, :mod:`.effort`), MLT updated every ``segment_length_m`` (coefficients at
     mid-segment, spherical density altitude, as
     :func:`~harp_analysis.analyses.effort.effort_table`)."""
-    length = check_range(
-        finite_scalar(segment_length_m, "segment_length_m"),
-        "segment_length_m",
-        low=0.0,
-        low_inclusive=False,
-    )
+    length = Bounds(low=0.0, low_inclusive=False).scalar(segment_length_m, "segment_length_m")
     flops = effort.mlt_flops(
         HP_CHAPTER_2,
         density_altitude="spherical",
@@ -225,15 +202,8 @@ def orbital_drag_to_gravity(
     ``altitude_km`` in the 1976 standard atmosphere (Ch. 1 C: "density at LEO altitudes is
     negligible"). With v^2 = GM/r and g = GM/r^2, N = rho Cd A r / (2 m). The default Cd = 2.2
     is the usual free-molecular value for satellites, far above the cone's continuum Cd."""
-    altitude = check_range(
-        finite_scalar(altitude_km, "altitude_km"), "altitude_km", low=0.0, high=1000.0
-    )
-    cd = check_range(
-        finite_scalar(drag_coefficient, "drag_coefficient"),
-        "drag_coefficient",
-        low=0.0,
-        low_inclusive=False,
-    )
+    altitude = Bounds(low=0.0, high=1000.0).scalar(altitude_km, "altitude_km")
+    cd = Bounds(low=0.0, low_inclusive=False).scalar(drag_coefficient, "drag_coefficient")
     p = get_projectile(projectile)
     radius = earth.RADIUS_M + altitude * 1e3
     density = float(standard_density(altitude * 1e3))

@@ -19,7 +19,7 @@ from scipy import constants
 
 from ...engines import appendix_a, threedof
 from ...foundation import earth
-from ...foundation.validation import check_choice, check_range, finite_scalar, positive_scalar
+from ...foundation.validation import Bounds, check_choice, finite_scalar, positive_scalar
 from ...models import trajectory
 from ...models.atmosphere import two_segment_density
 from ...models.launch import Launch, baseline_chapter_4
@@ -143,7 +143,7 @@ def gravity_dominant_share(projectile: str = "HP", ratio: float = 1.0) -> float:
     """Share of Chapter 2 A's ground range flown with drag under ``ratio`` times gravity (N <
     ``ratio``, Fig 2.2): "gravity is the dominant force over the vast majority of the
     trajectory"."""
-    limit = check_range(finite_scalar(ratio, "ratio"), "ratio", low=0.0, low_inclusive=False)
+    limit = Bounds(low=0.0, low_inclusive=False).scalar(ratio, "ratio")
     flight = scenarios.reference_3dof(projectile)
     n = flight.drag_to_gravity.to_numpy()
     steps = np.diff(flight.ground_range_m.to_numpy())

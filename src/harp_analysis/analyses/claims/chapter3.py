@@ -14,7 +14,7 @@ import numpy as np
 
 from ...engines import kepler, mks
 from ...foundation import earth
-from ...foundation.validation import check_choice, check_range, finite_scalar, positive_scalar
+from ...foundation.validation import Bounds, check_choice, finite_scalar, positive_scalar
 from .. import scenarios
 from ..comparisons import BASELINE_ELEVATIONS_DEG, case, chapter_4_launch
 from ..scenarios import fly_3dof
@@ -52,9 +52,7 @@ def kepler_handoff_error_km(
 
     ``atmosphere`` names the 3DOF's air (``"vacuum"``: the conic must then match exactly)."""
     check_choice(measure, "measure", ("path", "radial", "apogee"))
-    altitude = check_range(
-        finite_scalar(altitude_km, "altitude_km"), "altitude_km", low=0.0, low_inclusive=False
-    )
+    altitude = Bounds(low=0.0, low_inclusive=False).scalar(altitude_km, "altitude_km")
     flight = fly_3dof(no_wind(projectile, elevation_deg).but(atmosphere=atmosphere), 0.01)
     if altitude * 1e3 >= flight.attrs["apogee_altitude_m"]:
         raise ValueError(

@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
 
-from ...foundation.validation import ModelValidityWarning, check_choice, check_range, finite_scalar
+from ...foundation.validation import Bounds, ModelValidityWarning, check_choice
 from ...models.projectiles import BASELINE
 from .. import rotating, scenarios
 from ..comparisons import BASELINE_ELEVATIONS_DEG, VARIANTS, case, fly, launch_error_at_apogee_km
@@ -86,9 +86,7 @@ def beta_accuracy_limit(
     """The MKS beta at which the error at apogee reaches ``error_km``: ``projectile`` flown as
     in Fig 4.8 (no wind) with its mass varied (beta ~ 1/m; drag law, speed and elevation
     kept), the mass found by root finding, its beta returned."""
-    target = check_range(
-        finite_scalar(error_km, "error_km"), "error_km", low=0.0, low_inclusive=False
-    )
+    target = Bounds(low=0.0, low_inclusive=False).scalar(error_km, "error_km")
     base = no_wind(projectile, elevation_deg)
 
     def launch(log_mass):
@@ -107,9 +105,7 @@ def beta_limit_elevation_deg(projectile: str = "baseline", beta_limit: float = 0
     """Lowest barrel elevation (deg) at which ``projectile``'s MKS beta (eq 3.22) is under
     ``beta_limit``: beta = beta_90 / sin(phi0), Cd0 at the launch Mach being the same at every
     elevation."""
-    limit = check_range(
-        finite_scalar(beta_limit, "beta_limit"), "beta_limit", low=0.0, low_inclusive=False
-    )
+    limit = Bounds(low=0.0, low_inclusive=False).scalar(beta_limit, "beta_limit")
     elevation = math.radians(50.0)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelValidityWarning)

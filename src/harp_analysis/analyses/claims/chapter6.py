@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...foundation.validation import check_choice, check_range, finite_scalar
+from ...foundation.validation import Bounds, check_choice, finite_scalar
 from ...models.atmosphere import DRY_AIR_GAS_CONSTANT_J_KG_K
 from ..harp import apogees
 
@@ -70,12 +70,8 @@ def density_at_temperature_kg_m3(
     temperature_k: float, pressure_pa: float = STANDARD_PRESSURE_PA
 ) -> float:
     """Dry-air density p / (R T) (kg/m^3)."""
-    temperature = check_range(
-        finite_scalar(temperature_k, "temperature_k"), "temperature_k", low=0.0, low_inclusive=False
-    )
-    pressure = check_range(
-        finite_scalar(pressure_pa, "pressure_pa"), "pressure_pa", low=0.0, low_inclusive=False
-    )
+    temperature = Bounds(low=0.0, low_inclusive=False).scalar(temperature_k, "temperature_k")
+    pressure = Bounds(low=0.0, low_inclusive=False).scalar(pressure_pa, "pressure_pa")
     return pressure / (DRY_AIR_GAS_CONSTANT_J_KG_K * temperature)
 
 

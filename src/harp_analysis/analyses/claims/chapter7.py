@@ -18,7 +18,7 @@ from scipy.optimize import brentq
 
 from ...engines import mks, threedof
 from ...foundation import earth
-from ...foundation.validation import check_choice, check_range, finite_scalar, positive_scalar
+from ...foundation.validation import Bounds, check_choice, finite_scalar, positive_scalar
 from ...models.launch import Launch, baseline_chapter_4
 from .. import effort
 from ..comparisons import BASELINE_ELEVATIONS_DEG, case, chapter_4_launch, launch_error_at_apogee_km
@@ -201,8 +201,8 @@ def late_arrival_miss_m(
     """Distance (m) a body moving at ``speed_m_s`` on a ballistic path covers in ``delay_s``:
     |v dt + g dt^2 / 2| under uniform gravity (over half a second the conic's curvature is
     that of the parabola)."""
-    speed = check_range(finite_scalar(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0)
-    delay = check_range(finite_scalar(delay_s, "delay_s"), "delay_s", low=0.0)
+    speed = Bounds(low=0.0).scalar(speed_m_s, "speed_m_s")
+    delay = Bounds(low=0.0).scalar(delay_s, "delay_s")
     angle = math.radians(finite_scalar(flight_path_angle_deg, "flight_path_angle_deg"))
     g = finite_scalar(gravity_m_s2, "gravity_m_s2")
     horizontal = speed * math.cos(angle) * delay

@@ -117,51 +117,71 @@ def _points(
         points, targets, firing_solutions(gun, targets), strict=True
     ):
         for root in roots:
-            row: dict[str, object] = dict.fromkeys(MAP_COLUMNS, math.nan)
-            row.update(
-                map_bearing_deg=bearing_deg,
-                root=root,
-                downrange_m=downrange,
-                altitude_m=altitude,
-                latitude_deg=target.latitude_deg,
-                longitude_deg=target.longitude_deg,
-                leaves_atmosphere=None,
-                outcome=NO_SOLUTION,
-                reason=None,
-            )
+            row, solution = _solved_row(root, downrange, altitude, bearing_deg, target, solutions)
             rows.append(row)
-            solution = solutions.low if root == "low" else solutions.high
-            if solution is None:
-                # the reason names each missing root; keep this root's part
-                parts = [p for p in (solutions.reason or "").split("; ") if f"no {root}-angle" in p]
-                row["reason"] = parts[0] if parts else solutions.reason
-                continue
-            row.update(
-                elevation_deg=solution.elevation_deg,
-                bearing_deg=solution.bearing_deg,
-                time_of_flight_s=solution.time_of_flight_s,
-                beta=solution.beta,
-                leaves_atmosphere=solution.leaves_atmosphere,
-                mks_miss_m=solution.miss_m,
-            )
-            flown.append((row, target, solution))
+            if solution is not None:
+                flown.append((row, target, solution))
     if flown:
         chosen, aims, solved = zip(*flown, strict=True)
         misses, apogees = three_dof_misses(gun, aims, solved, rtol)
         for row, aim, miss, apogee in zip(chosen, aims, misses, apogees, strict=True):
             row.update(miss_3dof_m=miss, apogee_3dof_m=apogee, outcome=MEASURED)
             if not math.isfinite(miss):
-                row["outcome"] = NEVER_THERE
-                row["reason"] = (
-                    "the 3DOF fired at the MKS solution never reaches the target's altitude: "
-                    + (
-                        f"its apogee, {apogee / 1e3:.1f} km, is below the target's "
-                        f"{aim.altitude_m / 1e3:g} km"
-                        if apogee < aim.altitude_m
-                        else "it has not fallen back to it at the end of its flight"
-                    )
-                )
+                row.update(outcome=NEVER_THERE, reason=_never_there(apogee, aim.altitude_m))
     return rows
+
+
+def _solved_row(root: str, downrange, altitude, bearing_deg: float, target, solutions):
+    """The row of a point's ``root`` before the 3DOF flies it: the firing solution or why
+    there is none; and that solution (None where there is none)."""
+    row: dict[str, object] = dict.fromkeys(MAP_COLUMNS, math.nan)
+    row.update(
+        map_bearing_deg=bearing_deg,
+        root=root,
+        downrange_m=downrange,
+        altitude_m=altitude,
+        latitude_deg=target.latitude_deg,
+        longitude_deg=target.longitude_deg,
+        leaves_atmosphere=None,
+        outcome=NO_SOLUTION,
+        reason=None,
+    )
+    solution = solutions.low if root == "low" else solutions.high
+    if solution is None:
+        # the reason names each missing root; keep this root's part
+        parts = [p for p in (solutions.reason or "").split("; ") if f"no {root}-angle" in p]
+        row["reason"] = parts[0] if parts else solutions.reason
+        return row, None
+    row.update(
+        elevation_deg=solution.elevation_deg,
+        bearing_deg=solution.bearing_deg,
+        time_of_flight_s=solution.time_of_flight_s,
+        beta=solution.beta,
+        leaves_atmosphere=solution.leaves_atmosphere,
+        mks_miss_m=solution.miss_m,
+    )
+    return row, solution
+
+
+def _never_there(apogee_m: float, altitude_m: float) -> str:
+    """Why the 3DOF fired at the MKS solution has no miss: its apogee (m) below the target's
+    ``altitude_m``, or its flight ended before it fell back to it."""
+    return "the 3DOF fired at the MKS solution never reaches the target's altitude: " + (
+        f"its apogee, {apogee_m / 1e3:.1f} km, is below the target's {altitude_m / 1e3:g} km"
+        if apogee_m < altitude_m
+        else "it has not fallen back to it at the end of its flight"
+    )
+
+
+def _check_map(ranges_m, altitudes_m) -> tuple[np.ndarray, np.ndarray]:
+    """The map's downrange distances (> 0) and altitudes (>= 0), checked, as flat arrays (m)."""
+    ranges = np.ravel(finite_array(ranges_m, "ranges_m"))
+    altitudes = np.ravel(finite_array(altitudes_m, "altitudes_m"))
+    if ranges.size == 0 or np.any(ranges <= 0):
+        raise ValueError("ranges_m must be one or more downrange distances > 0 (m)")
+    if altitudes.size == 0 or np.any(altitudes < 0):
+        raise ValueError("altitudes_m must be one or more altitudes >= 0 (m)")
+    return ranges, altitudes
 
 
 def miss_map(
@@ -190,12 +210,7 @@ def miss_map(
     bearing_deg = check_range(
         real_number(bearing_deg, "bearing_deg"), "bearing_deg", low=0.0, high=360.0, unit="deg"
     )
-    ranges = np.ravel(finite_array(ranges_m, "ranges_m"))
-    altitudes = np.ravel(finite_array(altitudes_m, "altitudes_m"))
-    if ranges.size == 0 or np.any(ranges <= 0):
-        raise ValueError("ranges_m must be one or more downrange distances > 0 (m)")
-    if altitudes.size == 0 or np.any(altitudes < 0):
-        raise ValueError("altitudes_m must be one or more altitudes >= 0 (m)")
+    ranges, altitudes = _check_map(ranges_m, altitudes_m)
     points = [(float(x), float(h)) for h in altitudes for x in ranges]
     # one altitude's points a chunk: each solved by the compiled solver and flown as one batch
     chunks = [points[start : start + ranges.size] for start in range(0, len(points), ranges.size)]

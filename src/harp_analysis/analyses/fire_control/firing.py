@@ -17,7 +17,7 @@ flights, :mod:`harp_analysis.engines.calibrated_mks`), which lands tens of metre
 
 The rest of Chapter 7 A lives beside it: :mod:`.verification` flies the 3DOF at a solution and
 refines it by shooting, :mod:`.intercepts` meets ballistic targets and raids, and
-:mod:`.costs` counts and times both against the text's claims.
+:mod:`.studies.costs` counts and times both against the text's claims.
 
 SI inside (m, s, rad); degrees only in the arguments and fields named ``_deg``.
 """
@@ -404,50 +404,80 @@ def _solutions(
     if model == "calibrated" and solved.any():
         roots, counts = roots.copy(), counts.copy()
         _calibrate(gun, targets, branch, roots, solved, counts, models, notes)
-    results = []
-    for i, target in enumerate(targets):
-        if degenerate[i] is not None:
-            results.append(FiringSolutions(None, None, degenerate[i], int(counts[i]), math.nan))
-            continue
-        both = int(status[i, 0]) if status[i, 0] == status[i, 1] else -1
-        reason = {
-            solver.NO_TRAJECTORY: (
-                f"above the maximum altitude: no MKS trajectory between "
-                f"{_elevation_deg(solver.LOWEST_ELEVATION_RAD)} and "
-                f"{_elevation_deg(solver.HIGHEST_ELEVATION_RAD)} of elevation reaches "
-                f"{target.altitude_m / 1e3:g} km on the {branch} branch"
-            ),
-            solver.ALL_ESCAPE: (
-                "the MKS escapes at every elevation: the muzzle speed exceeds escape speed"
-            ),
-            solver.BEYOND_RANGE: (
-                f"beyond the maximum range: the target is {_distance(search[i, 6])} away along "
-                f"the ground, the gun reaches at most {_distance(search[i, 1])} toward it at "
-                f"{target.altitude_m / 1e3:g} km altitude (at "
-                f"{_elevation_deg(search[i, 0])}; Earth-fixed ground ranges)"
-            ),
-        }.get(both)
-        if reason is not None:
-            results.append(FiringSolutions(None, None, reason, int(counts[i]), search[i, 1]))
-            continue
-        found: list[FiringSolution | None] = []
-        reasons = []
-        for side in range(2):
-            row = roots[i, side]
-            if status[i, side] != solver.FOUND:
-                found.append(None)
-                reasons.append(_missing(status[i, side], side, search[i], row))
-                continue
-            root, why = _root(row, target, branch, limits, models[i, side], notes[i, side])
-            found.append(root)
-            if why is not None:
-                reasons.append(f"no {('low', 'high')[side]}-angle root: {why}")
-        results.append(
-            FiringSolutions(
-                found[0], found[1], "; ".join(reasons) or None, int(counts[i]), search[i, 1]
-            )
+    return [
+        _target_solutions(
+            target,
+            degenerate[i],
+            roots[i],
+            status[i],
+            search[i],
+            int(counts[i]),
+            models[i],
+            notes[i],
+            branch,
+            limits,
         )
-    return results
+        for i, target in enumerate(targets)
+    ]
+
+
+def _target_solutions(
+    target, degenerate, rows, status, search, count, models, notes, branch, limits
+) -> FiringSolutions:
+    """One target's FiringSolutions from the solver's ``rows``, ``status`` and ``search`` and
+    its ``count`` of MKS trajectories; ``degenerate``, why it has none whatever the model (else
+    None), ``models`` and ``notes`` whose root each is (:func:`_root`)."""
+    if degenerate is not None:
+        return FiringSolutions(None, None, degenerate, count, math.nan)
+    reason = _out_of_reach(status, search, target, branch)
+    if reason is not None:
+        return FiringSolutions(None, None, reason, count, search[1])
+    found, reasons = _roots(rows, status, search, target, branch, limits, models, notes)
+    return FiringSolutions(found[0], found[1], "; ".join(reasons) or None, count, search[1])
+
+
+def _out_of_reach(status, search, target: TargetPoint, branch: str) -> str | None:
+    """Why neither root of ``target`` exists where the solver's ``status`` (2,) gives one
+    reason for both (no trajectory gets there, every one escapes, beyond the maximum range);
+    else None."""
+    both = int(status[0]) if status[0] == status[1] else -1
+    return {
+        solver.NO_TRAJECTORY: (
+            f"above the maximum altitude: no MKS trajectory between "
+            f"{_elevation_deg(solver.LOWEST_ELEVATION_RAD)} and "
+            f"{_elevation_deg(solver.HIGHEST_ELEVATION_RAD)} of elevation reaches "
+            f"{target.altitude_m / 1e3:g} km on the {branch} branch"
+        ),
+        solver.ALL_ESCAPE: (
+            "the MKS escapes at every elevation: the muzzle speed exceeds escape speed"
+        ),
+        solver.BEYOND_RANGE: (
+            f"beyond the maximum range: the target is {_distance(search[6])} away along "
+            f"the ground, the gun reaches at most {_distance(search[1])} toward it at "
+            f"{target.altitude_m / 1e3:g} km altitude (at "
+            f"{_elevation_deg(search[0])}; Earth-fixed ground ranges)"
+        ),
+    }.get(both)
+
+
+def _roots(
+    rows, status, search, target: TargetPoint, branch: str, limits, models, notes
+) -> tuple[list[FiringSolution | None], list[str]]:
+    """The low and high FiringSolution (None where there is none) of one target from the
+    solver's ``rows``, ``status`` and ``search`` and whose root each is (``models``,
+    ``notes``: :func:`_root`), and why each missing one is missing."""
+    found: list[FiringSolution | None] = []
+    reasons = []
+    for side in range(2):
+        if status[side] != solver.FOUND:
+            found.append(None)
+            reasons.append(_missing(status[side], side, search, rows[side]))
+            continue
+        root, why = _root(rows[side], target, branch, limits, models[side], notes[side])
+        found.append(root)
+        if why is not None:
+            reasons.append(f"no {('low', 'high')[side]}-angle root: {why}")
+    return found, reasons
 
 
 def _degenerate(target: TargetPoint, distance_m: float, branch: str) -> str | None:

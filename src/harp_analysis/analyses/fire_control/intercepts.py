@@ -170,6 +170,16 @@ def _check_kepler_target(target) -> KeplerTarget:
     return target
 
 
+def _check_kepler_targets(targets) -> list[KeplerTarget]:
+    """A raid's ``targets`` as a list, checked to be a sequence of KeplerTarget."""
+    if isinstance(targets, KeplerTarget | str | bytes) or not isinstance(targets, Sequence):
+        raise TypeError(f"targets must be a sequence of KeplerTarget; got {type(targets).__name__}")
+    for index, target in enumerate(targets):
+        if not isinstance(target, KeplerTarget):
+            raise TypeError(f"targets[{index}] must be a KeplerTarget; got {type(target).__name__}")
+    return list(targets)
+
+
 def _aims(gun: Launch, target: KeplerTarget, times_s: np.ndarray) -> list[TargetPoint | None]:
     """The target's points at ``times_s`` (n,) fixed to the Earth (None below the ground), each
     with its time as the arrival time: a gun fired at t_f launches from the frame at t = 0
@@ -384,12 +394,7 @@ def raid_windows(
         and latest feasible intercept and the feasible fire times.
     """
     gun = check_gun(gun)
-    if isinstance(targets, KeplerTarget | str | bytes) or not isinstance(targets, Sequence):
-        raise TypeError(f"targets must be a sequence of KeplerTarget; got {type(targets).__name__}")
-    for index, target in enumerate(targets):
-        if not isinstance(target, KeplerTarget):
-            raise TypeError(f"targets[{index}] must be a KeplerTarget; got {type(target).__name__}")
-    targets = list(targets)
+    targets = _check_kepler_targets(targets)
     branch = check_choice(branch, "branch", BRANCHES)
     limits = check_bearing_limits(bearing_limits_deg)
     model = check_choice(model, "model", MODELS)

@@ -75,6 +75,8 @@ TIME_ORDER = 6
 #: The search of the maximum range stops within this of its elevation (rad): the excess is
 #: flat there to 1e-15 rad.
 _PEAK_WIDTH_RAD = 1e-7
+#: The golden section's fraction, of the search of the maximum range (Brent's method).
+_GOLDEN = 0.5 * (3.0 - math.sqrt(5.0))
 #: Newton's method on (elevation, bearing): the forward-difference step (rad), the miss (m) it
 #: stops at, the step (rad) below which it stops and its iterations. The bearing is free: near
 #: the vertical the Earth's turn moves the landing point more than the bearing does, and the
@@ -148,37 +150,67 @@ def _shot(gun, flags, elevation, bearing, target, work):
     decay = drive if flags[5] else math.cos(mu)  # the consistent decay, or eq 6.14 as printed
     if not launch_elevation > 0.0 or beta * decay > MAX_DECAY:
         return NOT_USABLE, nan, nan, nan, nan, beta, nan
-    table, escapes, arguments, angles = work
+    table, _, arguments, angles = work
     for row, value in enumerate((speed, launch_elevation, beta, tau, earth.RADIUS_M, drive, decay)):
         arguments[row, 0] = value
-    a = arguments
-    if mks.solve_constants(a[0], a[1], a[2], a[3], a[4], a[5], a[6], table, escapes) >= 0:
-        return NOT_USABLE, nan, nan, nan, nan, beta, nan
-    if escapes[0]:
-        return ESCAPES, nan, nan, nan, nan, beta, nan
-    if mks.find_apogees(table, a[3], a[4], escapes, angles[0:1], angles[1:2]) >= 0:
-        return NOT_USABLE, nan, nan, nan, nan, beta, nan
+    status = _apogee(work)
+    if status != OK:
+        return status, nan, nan, nan, nan, beta, nan
     apogee_angle, apogee_altitude = angles[0], angles[1]
     radius = target[3]
     if not apogee_altitude + earth.RADIUS_M > radius:
         return BELOW, nan, nan, nan, nan, beta, apogee_altitude
-    descending = target[8] > 0
-    if descending:
-        if mks.find_impacts(table, a[3], a[4], escapes, angles[0:1], angles[2:3]) >= 0:
-            return NOT_USABLE, nan, nan, nan, nan, beta, apogee_altitude
-        low, high, sign = apogee_angle, angles[2], 1.0
-    else:
-        low, high, sign = 0.0, apogee_angle, -1.0
+    low, high, sign = _branch(work, target)
     if not high > low > -1.0 or not apogee_angle > 0.0:  # no digits: grazing, or vertical
         return NOT_USABLE, nan, nan, nan, nan, beta, apogee_altitude
     theta = mks.crossing_angle(table, 0, tau, low, high, 1.0 / radius, sign)
     time = mks.time_to(table, 0, tau, beta * decay, theta, _NODES, _WEIGHTS)
-    # the crossing point in the inertial frame of t = 0, then turned back into the Earth's
+    excess, east, north = _landing(
+        gun, velocity, mks.u_at(table, 0, tau, theta), theta, time, target
+    )
+    return OK, excess, east, north, time, beta, apogee_altitude
+
+
+# _apogee, _branch and _landing are inlined: they run at every shot, where a call passing
+# arrays would cost its reference counts
+@jit(inline=True)
+def _apogee(work):
+    """The MKS constants of the launch in ``work``'s arguments and its apogee (polar angle and
+    altitude, into its angles): :data:`OK`, :data:`ESCAPES` or :data:`NOT_USABLE`."""
+    table, escapes, a, angles = work
+    if mks.solve_constants(a[0], a[1], a[2], a[3], a[4], a[5], a[6], table, escapes) >= 0:
+        return NOT_USABLE
+    if escapes[0]:
+        return ESCAPES
+    if mks.find_apogees(table, a[3], a[4], escapes, angles[0:1], angles[1:2]) >= 0:
+        return NOT_USABLE
+    return OK
+
+
+@jit(inline=True)
+def _branch(work, target):
+    """The polar angles bounding the target's branch of the trajectory of :func:`_apogee`
+    (apogee to impact descending, launch to apogee ascending; NaN where the impact is not
+    found) and the sign :func:`.mks.crossing_angle` takes for it."""
+    table, escapes, a, angles = work
+    if not target[8] > 0:
+        return 0.0, angles[0], -1.0
+    if mks.find_impacts(table, a[3], a[4], escapes, angles[0:1], angles[2:3]) >= 0:
+        return math.nan, math.nan, 1.0
+    return angles[0], angles[2], 1.0
+
+
+@jit(inline=True)
+def _landing(gun, velocity, u, theta, time, target):
+    """The along-track excess (rad) and the east and north miss (m) of the crossing at polar
+    angle ``theta`` (``u`` its 1/r) reached at ``time``, the shot launched at ``velocity``:
+    the crossing point in the inertial frame of t = 0, turned back into the Earth's."""
+    radius = target[3]
     up = launch_axes(gun[_LATITUDE], 0.0, 0.0)[0]
     climb = dot(velocity, up)
     along = (velocity[0] - climb * up[0], velocity[1] - climb * up[1], velocity[2] - climb * up[2])
     size = math.sqrt(dot(along, along))
-    r = 1.0 / mks.u_at(table, 0, tau, theta)
+    r = 1.0 / u
     c, s = r * math.cos(theta), r * math.sin(theta) / size
     x, y = turned_about_axis(
         c * up[0] + s * along[0], c * up[1] + s * along[1], -gun[_OMEGA] * time
@@ -194,7 +226,7 @@ def _shot(gun, flags, elevation, bearing, target, work):
         east, east_size = (0.0, 1.0, 0.0), 1.0
     east = (east[0] / east_size, east[1] / east_size, 0.0)
     north = cross((target[0], target[1], target[2]), east)
-    return OK, excess, dot(miss, east), dot(miss, north), time, beta, apogee_altitude
+    return excess, dot(miss, east), dot(miss, north)
 
 
 @jit
@@ -235,53 +267,65 @@ def _peak(gun, flags, low, high, bearing, target, work):
     """The elevation in [low, high] of the greatest along-track excess at ``bearing``, its
     excess and the evaluations spent: Brent's method (parabolic steps, golden sections where
     they fail), the excess having one maximum there."""
-    golden = 0.5 * (3.0 - math.sqrt(5.0))
     a, b = low, high
-    x = w = v = a + golden * (b - a)
+    x = w = v = a + _GOLDEN * (b - a)
     fx = fw = fv = -_finite(_excess(gun, flags, x, bearing, target, work))
     evaluations = 1
     d = e = 0.0
+    tolerance = _PEAK_WIDTH_RAD
     while True:
         middle = 0.5 * (a + b)
-        tolerance = _PEAK_WIDTH_RAD
         if abs(x - middle) <= 2.0 * tolerance - 0.5 * (b - a):
             break
-        parabolic = False
-        if abs(e) > tolerance:
-            r = (x - w) * (fx - fv)
-            q = (x - v) * (fx - fw)
-            p = (x - v) * q - (x - w) * r
-            q = 2.0 * (q - r)
-            if q > 0.0:
-                p = -p
-            q = abs(q)
-            if abs(p) < abs(0.5 * q * e) and q * (a - x) < p < q * (b - x):
-                e, d = d, p / q
-                parabolic = True
-                if (x + d) - a < 2.0 * tolerance or b - (x + d) < 2.0 * tolerance:
-                    d = tolerance if middle > x else -tolerance
-        if not parabolic:
-            e = (b - x) if x < middle else (a - x)
-            d = golden * e
+        d, e = _brent_step(a, b, x, w, v, fx, fw, fv, d, e, middle)
         u = x + (d if abs(d) >= tolerance else (tolerance if d > 0 else -tolerance))
         fu = -_finite(_excess(gun, flags, u, bearing, target, work))
         evaluations += 1
-        if fu <= fx:
-            if u < x:
-                b = x
-            else:
-                a = x
-            v, fv, w, fw, x, fx = w, fw, x, fx, u, fu
-        else:
-            if u < x:
-                a = u
-            else:
-                b = u
-            if fu <= fw or w == x:
-                v, fv, w, fw = w, fw, u, fu
-            elif fu <= fv or v == x or v == w:
-                v, fv = u, fu
+        a, b, v, fv, w, fw, x, fx = _brent_keep(a, b, v, fv, w, fw, x, fx, u, fu)
     return x, -fx, evaluations
+
+
+@jit
+def _brent_step(a, b, x, w, v, fx, fw, fv, d, e, middle):
+    """Brent's next step from ``x`` and the last two (``d``, ``e``): the parabola's through
+    x, w and v where it falls inside [a, b] and shrinks, else a golden section; returns both."""
+    tolerance = _PEAK_WIDTH_RAD
+    if abs(e) > tolerance:
+        r = (x - w) * (fx - fv)
+        q = (x - v) * (fx - fw)
+        p = (x - v) * q - (x - w) * r
+        q = 2.0 * (q - r)
+        if q > 0.0:
+            p = -p
+        q = abs(q)
+        if abs(p) < abs(0.5 * q * e) and q * (a - x) < p < q * (b - x):
+            e, d = d, p / q
+            if (x + d) - a < 2.0 * tolerance or b - (x + d) < 2.0 * tolerance:
+                d = tolerance if middle > x else -tolerance
+            return d, e
+    e = (b - x) if x < middle else (a - x)
+    return _GOLDEN * e, e
+
+
+@jit
+def _brent_keep(a, b, v, fv, w, fw, x, fx, u, fu):
+    """Brent's bracket [a, b] and its three best points (x the best, w and v the next) with
+    their values, after the trial ``u`` of value ``fu``."""
+    if fu <= fx:
+        if u < x:
+            b = x
+        else:
+            a = x
+        return a, b, w, fw, x, fx, u, fu
+    if u < x:
+        a = u
+    else:
+        b = u
+    if fu <= fw or w == x:
+        return a, b, w, fw, u, fu, x, fx
+    if fu <= fv or v == x or v == w:
+        return a, b, u, fu, w, fw, x, fx
+    return a, b, v, fv, w, fw, x, fx
 
 
 @jit
@@ -334,38 +378,24 @@ def _newton(gun, flags, start, low, high, bearing, target, work, out):
     f, trial, shifted = np.empty(6), np.empty(6), np.empty(6)
     jacobian = np.empty((3, 2))
     evaluations = 3
-    if not _residual(gun, flags, x[0], x[1], target, work, f) or not _jacobian(
-        gun, flags, x, f, target, work, jacobian, shifted
-    ):
+    if not _linearised(gun, flags, x, target, work, f, jacobian, shifted):
         return False, evaluations
     miss = math.hypot(f[0], f[1])
     for _ in range(_ITERATIONS):
         if miss <= _CONVERGED_M:
             break
-        a, b, c, d = jacobian[0, 0], jacobian[0, 1], jacobian[1, 0], jacobian[1, 1]
-        determinant = a * d - b * c
-        if determinant == 0.0 or not math.isfinite(determinant):
+        regular, step_e, step_b = _newton_step(jacobian, f)
+        if not regular:
             break
-        step_e = -(d * f[0] - b * f[1]) / determinant
-        step_b = -(-c * f[0] + a * f[1]) / determinant
-        usable = False
-        for _ in range(30):  # halve the step until the shot is usable and inside the bounds
-            new_e, new_b = x[0] + step_e, x[1] + step_b
-            if low <= new_e <= high:
-                evaluations += 1
-                usable = _residual(gun, flags, new_e, new_b, target, work, trial)
-                if usable:
-                    break
-            step_e, step_b = 0.5 * step_e, 0.5 * step_b
+        usable, step_e, step_b, spent = _usable_step(
+            gun, flags, x, step_e, step_b, low, high, target, work, trial
+        )
+        evaluations += spent
         if not usable:
             break
         norm = step_e * step_e + step_b * step_b
-        for row in range(3):  # Broyden's (good) update along the step taken
-            change = trial[row] - f[row]
-            predicted = jacobian[row, 0] * step_e + jacobian[row, 1] * step_b
-            jacobian[row, 0] += (change - predicted) * step_e / norm
-            jacobian[row, 1] += (change - predicted) * step_b / norm
-        x[0], x[1] = new_e, new_b
+        _broyden(jacobian, f, trial, step_e, step_b, norm)
+        x[0], x[1] = x[0] + step_e, x[1] + step_b
         f[:] = trial
         new_miss = math.hypot(f[0], f[1])
         if new_miss > _CONVERGED_M and new_miss > 0.5 * miss:  # Broyden has drifted
@@ -380,6 +410,53 @@ def _newton(gun, flags, start, low, high, bearing, target, work, out):
     out[7], out[8], out[9], out[10] = jacobian[0, 0], jacobian[0, 1], jacobian[1, 0], jacobian[1, 1]
     out[11] = jacobian[2, 0]
     return miss <= _CONVERGED_M, evaluations
+
+
+@jit
+def _linearised(gun, flags, x, target, work, f, jacobian, shifted):
+    """The residual at ``x`` into ``f`` and its forward-difference Jacobian into ``jacobian``
+    (:func:`_jacobian`); False where a shot is not usable."""
+    return _residual(gun, flags, x[0], x[1], target, work, f) and _jacobian(
+        gun, flags, x, f, target, work, jacobian, shifted
+    )
+
+
+@jit
+def _newton_step(jacobian, f):
+    """Newton's step (elevation, bearing) that zeroes the east and north miss of ``f`` by the
+    Jacobian's first two rows; False first where they are singular."""
+    a, b, c, d = jacobian[0, 0], jacobian[0, 1], jacobian[1, 0], jacobian[1, 1]
+    determinant = a * d - b * c
+    if determinant == 0.0 or not math.isfinite(determinant):
+        return False, math.nan, math.nan
+    return True, -(d * f[0] - b * f[1]) / determinant, -(-c * f[0] + a * f[1]) / determinant
+
+
+@jit
+def _usable_step(gun, flags, x, step_e, step_b, low, high, target, work, trial):
+    """The step from ``x`` halved (at most 30 times) until its shot is usable and its
+    elevation in [low, high], that shot's residual in ``trial``: whether one was, the step and
+    the trajectories evaluated."""
+    evaluations = 0
+    for _ in range(30):
+        new_e, new_b = x[0] + step_e, x[1] + step_b
+        if low <= new_e <= high:
+            evaluations += 1
+            if _residual(gun, flags, new_e, new_b, target, work, trial):
+                return True, step_e, step_b, evaluations
+        step_e, step_b = 0.5 * step_e, 0.5 * step_b
+    return False, step_e, step_b, evaluations
+
+
+@jit
+def _broyden(jacobian, f, trial, step_e, step_b, norm):
+    """Broyden's (good) update of ``jacobian`` along the step taken (squared length ``norm``)
+    from the residual ``f`` to ``trial``."""
+    for row in range(3):
+        change = trial[row] - f[row]
+        predicted = jacobian[row, 0] * step_e + jacobian[row, 1] * step_b
+        jacobian[row, 0] += (change - predicted) * step_e / norm
+        jacobian[row, 1] += (change - predicted) * step_b / norm
 
 
 @jit
@@ -431,10 +508,7 @@ def _edge(gun, flags, outside, inside, inside_excess, inside_apogee, bearing, ta
     for _ in range(_EDGE_ITERATIONS):
         if abs(b - a) <= _EDGE_WIDTH_RAD:
             break
-        falsi = math.isfinite(fa) and math.isfinite(fb) and fb > 0.0 > fa
-        middle = (a - fa * (b - a) / (fb - fa)) if falsi else 0.5 * (a + b)
-        if not min(a, b) < middle < max(a, b):
-            middle = 0.5 * (a + b)
+        middle = _edge_trial(a, b, fa, fb)
         status, trial, _, _, _, _, apogee = _shot(gun, flags, middle, bearing, target, work)
         evaluations += 1
         if status == OK:
@@ -451,10 +525,22 @@ def _edge(gun, flags, outside, inside, inside_excess, inside_apogee, bearing, ta
 
 
 @jit
-def _solve_all(
-    gun, flags, n_terms, latitude, longitude, altitude, descending, roots, status, search
-):
-    """Every target's roots (:func:`solve`); returns the MKS trajectories of each."""
+def _edge_trial(a, b, fa, fb):
+    """The next trial elevation between ``a`` (outside) and ``b`` (inside): regula falsi on
+    the apogee's heights ``fa`` and ``fb`` where both are known and straddle the target's,
+    else (or where it would fall outside) the middle."""
+    falsi = math.isfinite(fa) and math.isfinite(fb) and fb > 0.0 > fa
+    middle = (a - fa * (b - a) / (fb - fa)) if falsi else 0.5 * (a + b)
+    if not min(a, b) < middle < max(a, b):
+        middle = 0.5 * (a + b)
+    return middle
+
+
+@jit
+def _scan_arrays(n_terms):
+    """The scratch the per-target search reuses: the MKS's ``work`` (:func:`_shot`) and the
+    ``scan`` of :func:`_usable_points` (the grid, each grid point's status, excess and apogee,
+    then the usable points and their excess in order of elevation: the edges and the grid's)."""
     table = np.empty((mks.AMPLITUDES_ROW + n_terms, 1))
     escapes = np.empty(1, dtype=np.bool_)
     arguments = np.empty((7, 1))
@@ -464,137 +550,203 @@ def _solve_all(
     shots = np.empty(GRID_POINTS, dtype=np.int64)
     excess = np.empty(GRID_POINTS)
     apogees = np.empty(GRID_POINTS)
-    # the usable points in order of elevation: the edges and the grid's usable points
     points = np.empty(GRID_POINTS + 2)
     values = np.empty(GRID_POINTS + 2)
+    return work, (grid, shots, excess, apogees, points, values)
+
+
+@jit
+def _solve_all(
+    gun, flags, n_terms, latitude, longitude, altitude, descending, roots, status, search
+):
+    """Every target's roots (:func:`solve`); returns the MKS trajectories of each."""
+    work, scan = _scan_arrays(n_terms)
     counts = np.zeros(latitude.size, dtype=np.int64)
     for i in range(latitude.size):
         target = _target_row(latitude[i], longitude[i], altitude[i], descending[i], gun[_LATITUDE])
-        bearing = target[9]
-        roots[i] = math.nan
-        search[i] = math.nan
-        search[i, 6] = target[7] * earth.RADIUS_M
-        first = last = -1
-        for j in range(GRID_POINTS):
-            shot = _shot(gun, flags, grid[j], bearing, target, work)
-            shots[j], excess[j], apogees[j] = shot[0], shot[1], shot[6]
-            if shot[0] == OK:
-                first = j if first < 0 else first
-                last = j
-        counts[i] = GRID_POINTS
-        if first < 0:
-            escaping = reaching = False
-            for j in range(GRID_POINTS):
-                escaping |= shots[j] == ESCAPES
-                reaching |= shots[j] == BELOW
-            status[i, 0] = status[i, 1] = ALL_ESCAPE if escaping and not reaching else NO_TRAJECTORY
-            continue
-        # where the usable elevations end between grid points, their edge by bisection: the
-        # excess may be greatest there (the ascending branch of a target aloft)
-        size = 0
-        if first > 0:
-            points[0], values[0], spent = _edge(
-                gun,
-                flags,
-                grid[first - 1],
-                grid[first],
-                excess[first],
-                apogees[first],
-                bearing,
-                target,
-                work,
-            )
-            counts[i] += spent
-            size = 1
-        for j in range(first, last + 1):
-            if shots[j] == OK:
-                points[size], values[size] = grid[j], excess[j]
-                size += 1
-        if last < GRID_POINTS - 1:
-            points[size], values[size], spent = _edge(
-                gun,
-                flags,
-                grid[last + 1],
-                grid[last],
-                excess[last],
-                apogees[last],
-                bearing,
-                target,
-                work,
-            )
-            counts[i] += spent
-            size += 1
-        search[i, 2], search[i, 3] = points[0], _range_m(values[0], target)
-        search[i, 4], search[i, 5] = points[size - 1], _range_m(values[size - 1], target)
-        best = 0
-        for k in range(size):
-            if values[k] > values[best]:
-                best = k
-        # the maximum range, searched where the points cannot tell: the best falls short
-        # (beyond the maximum range, or two roots between points) or a neighbour of it does
-        # (a root within a step of the best point, which must not bound its search)
-        peak, top = points[best], values[best]
-        before = values[best - 1] if best > 0 else math.inf
-        after = values[best + 1] if best < size - 1 else math.inf
-        if top < 0.0 or before < 0.0 or after < 0.0:
-            refined, value, spent = _peak(
-                gun,
-                flags,
-                points[max(best - 1, 0)],
-                points[min(best + 1, size - 1)],
-                bearing,
-                target,
-                work,
-            )
-            counts[i] += spent
-            if value > top:
-                peak, top = refined, value
-        search[i, 0], search[i, 1] = peak, _range_m(top, target)
-        if top < 0.0:
-            status[i, 0] = status[i, 1] = BEYOND_RANGE
-            continue
-        for side in range(2):
-            # the sign change nearest the peak among the points on this side, and the peak
-            a = fa = b = fb = math.nan
-            if side == 0:
-                for k in range(size):
-                    if points[k] >= peak:
-                        break
-                    following = values[k + 1] if points[k + 1] < peak else top
-                    ending = points[k + 1] if points[k + 1] < peak else peak
-                    if values[k] < 0.0 <= following:
-                        a, fa, b, fb = points[k], values[k], ending, following
-            else:
-                for k in range(size - 1, -1, -1):
-                    if points[k] <= peak:
-                        break
-                    following = values[k - 1] if points[k - 1] > peak else top
-                    ending = points[k - 1] if points[k - 1] > peak else peak
-                    if values[k] < 0.0 <= following:
-                        a, fa, b, fb = points[k], values[k], ending, following
-            if math.isnan(a):
-                status[i, side] = BELOW_LOWEST if side == 0 else ABOVE_HIGHEST
-                continue
-            # from the sign change at the great-circle bearing; near the vertical the Earth's
-            # turn carries the landing points round a circle about the vertical shot's, and
-            # the root's bearing can be far from the great circle's: then from other bearings
-            for start in range(_BEARING_STARTS):
-                converged, spent = _newton(
-                    gun,
-                    flags,
-                    a + (b - a) * fa / (fa - fb),
-                    points[0] if side == 0 else peak,
-                    peak if side == 0 else points[size - 1],
-                    bearing + 2.0 * math.pi * start / _BEARING_STARTS,
-                    target,
-                    work,
-                    roots[i, side],
-                )
-                counts[i] += spent
-                if converged:
-                    break
-            status[i, side] = FOUND if converged else NOT_CONVERGED
+        counts[i] = _solve_target(gun, flags, target, work, scan, roots[i], status[i], search[i])
     return counts
+
+
+@jit
+def _solve_target(gun, flags, target, work, scan, roots, status, search):
+    """One target's two roots, their status and its search row; returns the MKS trajectories
+    evaluated."""
+    points, values = scan[4], scan[5]
+    roots[:] = math.nan
+    search[:] = math.nan
+    search[6] = target[7] * earth.RADIUS_M
+    size, evaluations = _usable_points(gun, flags, target, work, scan, status)
+    if size == 0:
+        return evaluations
+    search[2], search[3] = points[0], _range_m(values[0], target)
+    search[4], search[5] = points[size - 1], _range_m(values[size - 1], target)
+    peak, top, spent = _maximum_range(gun, flags, points, values, size, target, work)
+    evaluations += spent
+    search[0], search[1] = peak, _range_m(top, target)
+    if top < 0.0:
+        status[0] = status[1] = BEYOND_RANGE
+        return evaluations
+    for side in range(2):
+        a, fa, b, fb = _bracket(points, values, size, peak, top, side)
+        if math.isnan(a):
+            status[side] = BELOW_LOWEST if side == 0 else ABOVE_HIGHEST
+            continue
+        converged, spent = _root(
+            gun,
+            flags,
+            a + (b - a) * fa / (fa - fb),
+            points[0] if side == 0 else peak,
+            peak if side == 0 else points[size - 1],
+            target,
+            work,
+            roots[side],
+        )
+        evaluations += spent
+        status[side] = FOUND if converged else NOT_CONVERGED
+    return evaluations
+
+
+@jit
+def _usable_points(gun, flags, target, work, scan, status):
+    """The elevation scan at the great-circle bearing: the usable points of ``scan`` in order
+    of elevation (the grid's, and the edges of the usable elevations between grid points, found
+    by :func:`_edge`: the excess may be greatest there, on the ascending branch of a target
+    aloft). Returns their count (0, with both roots' ``status`` saying why, where no grid point
+    is usable) and the MKS trajectories evaluated."""
+    grid, shots, excess, apogees, points, values = scan
+    bearing = target[9]
+    first = last = -1
+    for j in range(GRID_POINTS):
+        shot = _shot(gun, flags, grid[j], bearing, target, work)
+        shots[j], excess[j], apogees[j] = shot[0], shot[1], shot[6]
+        if shot[0] == OK:
+            first = j if first < 0 else first
+            last = j
+    evaluations = GRID_POINTS
+    if first < 0:
+        status[0] = status[1] = _unusable(shots)
+        return 0, evaluations
+    size = 0
+    if first > 0:
+        points[0], values[0], spent = _edge(
+            gun,
+            flags,
+            grid[first - 1],
+            grid[first],
+            excess[first],
+            apogees[first],
+            bearing,
+            target,
+            work,
+        )
+        evaluations += spent
+        size = 1
+    for j in range(first, last + 1):
+        if shots[j] == OK:
+            points[size], values[size] = grid[j], excess[j]
+            size += 1
+    if last < GRID_POINTS - 1:
+        points[size], values[size], spent = _edge(
+            gun,
+            flags,
+            grid[last + 1],
+            grid[last],
+            excess[last],
+            apogees[last],
+            bearing,
+            target,
+            work,
+        )
+        evaluations += spent
+        size += 1
+    return size, evaluations
+
+
+@jit
+def _unusable(shots):
+    """Why no shot of the grid (its statuses ``shots``) is usable: :data:`ALL_ESCAPE` where
+    some escape and none falls short of the target's altitude, else :data:`NO_TRAJECTORY`."""
+    escaping = reaching = False
+    for j in range(GRID_POINTS):
+        escaping |= shots[j] == ESCAPES
+        reaching |= shots[j] == BELOW
+    return ALL_ESCAPE if escaping and not reaching else NO_TRAJECTORY
+
+
+@jit
+def _maximum_range(gun, flags, points, values, size, target, work):
+    """The elevation of the maximum range and its excess, and the evaluations spent: the best
+    usable point, searched further by :func:`_peak` where the points cannot tell: the best
+    falls short (beyond the maximum range, or two roots between points) or a neighbour of it
+    does (a root within a step of the best point, which must not bound its search)."""
+    best = 0
+    for k in range(size):
+        if values[k] > values[best]:
+            best = k
+    peak, top = points[best], values[best]
+    before = values[best - 1] if best > 0 else math.inf
+    after = values[best + 1] if best < size - 1 else math.inf
+    if not (top < 0.0 or before < 0.0 or after < 0.0):
+        return peak, top, 0
+    refined, value, spent = _peak(
+        gun,
+        flags,
+        points[max(best - 1, 0)],
+        points[min(best + 1, size - 1)],
+        target[9],
+        target,
+        work,
+    )
+    if value > top:
+        return refined, value, spent
+    return peak, top, spent
+
+
+@jit
+def _bracket(points, values, size, peak, top, side):
+    """The sign change of the excess nearest the maximum range (``peak``, excess ``top``) on
+    the low (``side`` 0) or high (1) side of it, among the usable points and the peak: its
+    ends (a, fa, b, fb), ``a`` short of the target; NaN where there is none."""
+    a = fa = b = fb = math.nan
+    # from the far end toward the peak: up the low side, down the high side (elevations
+    # compared by sign * elevation, exactly, as if the high side ran upward too)
+    sign = 1 if side == 0 else -1
+    for k in range(0, size) if side == 0 else range(size - 1, -1, -1):
+        if sign * points[k] >= sign * peak:
+            break
+        inside = sign * points[k + sign] < sign * peak
+        following = values[k + sign] if inside else top
+        ending = points[k + sign] if inside else peak
+        if values[k] < 0.0 <= following:
+            a, fa, b, fb = points[k], values[k], ending, following
+    return a, fa, b, fb
+
+
+@jit
+def _root(gun, flags, start, low, high, target, work, out):
+    """One root by :func:`_newton` from ``start`` elevation, elevation kept in [low, high]:
+    from the great-circle bearing, then from others (near the vertical the Earth's turn
+    carries the landing points round a circle about the vertical shot's, and the root's
+    bearing can be far from the great circle's). Returns whether it converged and the MKS
+    trajectories evaluated."""
+    evaluations = 0
+    for start_index in range(_BEARING_STARTS):
+        converged, spent = _newton(
+            gun,
+            flags,
+            start,
+            low,
+            high,
+            target[9] + 2.0 * math.pi * start_index / _BEARING_STARTS,
+            target,
+            work,
+            out,
+        )
+        evaluations += spent
+        if converged:
+            break
+    return converged, evaluations
 
 
 def solve(

@@ -41,6 +41,7 @@ from ...models.launch import Launch
 from ...models.trajectory import launch_axes, surface_range
 from . import solver
 from .firing import (
+    BRANCHES,
     FiringSolution,
     TargetPoint,
     check_gun,
@@ -261,13 +262,7 @@ def _on_bearing(
         return shots.shot(elevation, bearing, i)
 
     def missing(why: str, where: str, shot: _Shot) -> tuple[_Shot, str]:
-        way = "crosses" if rising else "comes down through"
-        against = (
-            f"at most {_km(shot.range_m)} from the gun, the aim {_km(shot.aim_range_m)}"
-            if shot.excess_m < 0
-            else f"{_km(shot.range_m)} from the gun already, the aim {_km(shot.aim_range_m)}"
-        )
-        return shot, f"{why}: at {where}, the 3DOF {way} {altitude / 1e3:g} km {against}"
+        return shot, _missing(why, where, shot, altitude, rising)
 
     top = shoot(_HIGHEST_RAD)
     highest = f"{math.degrees(_HIGHEST_RAD):.2f} deg, the highest elevation searched"
@@ -277,15 +272,7 @@ def _on_bearing(
             f"the 3DOF never reaches the aim's altitude, {altitude / 1e3:g} km: at {highest}, "
             f"its apogee is {_km(apogee)}"
         )
-    foot = _grazing(shots, i, bearing)
-    at_foot, rise = shoot(foot), 1e-9
-    while math.isnan(at_foot.range_m):  # a clearance below the 3DOF's resolution of the crossing
-        at_foot, rise = shoot(min(foot + rise, _HIGHEST_RAD)), 2.0 * rise
-    grazing = (
-        f"{math.degrees(foot):.2f} deg, the lowest elevation searched"
-        if foot == _LOWEST_RAD
-        else f"the grazing elevation {math.degrees(at_foot.elevation_rad):.4f} deg"
-    )
+    at_foot, grazing = _at_foot(shoot, _grazing(shots, i, bearing))
     if rising:
         if at_foot.excess_m < 0:
             return missing("the aim lies beyond the ascending branch's reach", grazing, at_foot)
@@ -299,9 +286,32 @@ def _on_bearing(
         if low is at_foot and at_foot.excess_m > 0:
             return missing("no low-angle 3DOF root", grazing, at_foot)
     if high is top and top.excess_m > 0:
-        branch = "ascending" if rising else "descending"
-        return missing(f"the aim lies short of the {branch} branch", highest, top)
+        return missing(f"the aim lies short of the {BRANCHES[rising]} branch", highest, top)
     return _solve(shoot, low, high, within_m), None
+
+
+def _missing(why: str, where: str, shot: _Shot, altitude: float, rising: bool) -> str:
+    """Why a root is missing (``why``), shown by ``shot`` at ``where``: how far from the gun
+    the 3DOF crosses the target's ``altitude`` (m) there, and how far the aim is."""
+    way = "crosses" if rising else "comes down through"
+    against = (
+        f"at most {_km(shot.range_m)} from the gun, the aim {_km(shot.aim_range_m)}"
+        if shot.excess_m < 0
+        else f"{_km(shot.range_m)} from the gun already, the aim {_km(shot.aim_range_m)}"
+    )
+    return f"{why}: at {where}, the 3DOF {way} {altitude / 1e3:g} km {against}"
+
+
+def _at_foot(shoot, foot: float) -> tuple[_Shot, str]:
+    """The shot at the branch's ``foot`` (rad; :func:`_grazing`), raised by doubling steps
+    where its clearance is below the 3DOF's resolution of the crossing, and where it is for a
+    message."""
+    at_foot, rise = shoot(foot), 1e-9
+    while math.isnan(at_foot.range_m):
+        at_foot, rise = shoot(min(foot + rise, _HIGHEST_RAD)), 2.0 * rise
+    if foot == _LOWEST_RAD:
+        return at_foot, f"{math.degrees(foot):.2f} deg, the lowest elevation searched"
+    return at_foot, f"the grazing elevation {math.degrees(at_foot.elevation_rad):.4f} deg"
 
 
 def _grazing(shots: _Batch3dof, i: int, bearing: float) -> float:
@@ -430,8 +440,26 @@ def _refine_3dof(
             for s in solutions
         ]
     )
-    # where the 3DOF at the MKS solution falls short of the target's altitude (the MKS's
-    # apogee just above it, the 3DOF's below), raise the elevation until it gets there
+    _get_there(shots, x, miss, time, jacobian)
+    _newton(shots, x, miss, time, jacobian, tolerance_m)
+    reasons: list[str | None] = [None] * count
+    for i in everyone[~(np.hypot(miss[:, 0], miss[:, 1]) <= tolerance_m)]:
+        shot, reasons[i] = _search(shots, i, x[i, 1], start[i, 0], tolerance_m)
+        x[i], miss[i], time[i] = (shot.elevation_rad, shot.bearing_rad), shot.miss_m, shot.time_s
+    size = np.hypot(miss[:, 0], miss[:, 1])
+    return [
+        _verification(
+            solution, x[i], start[i], first[i], size[i], time[i], reasons[i], shots, i, tolerance_m
+        )
+        for i, solution in enumerate(solutions)
+    ]
+
+
+def _get_there(shots: _Batch3dof, x, miss, time, jacobian) -> None:
+    """Newton's start, in place: where the 3DOF at the MKS solution falls short of the
+    target's altitude (the MKS's apogee just above it, the 3DOF's below), the elevation raised
+    until it gets there; the Jacobian differenced by the 3DOF where the solution has none."""
+    everyone = np.arange(x.shape[0])
     for _ in range(_RAISES):
         short = everyone[~np.isfinite(miss[:, 0])]
         if not short.size:
@@ -442,39 +470,37 @@ def _refine_3dof(
     if unknown.any():
         which = everyone[unknown]
         jacobian[which] = shots.jacobian(x[which], miss[which], which)
-    _newton(shots, x, miss, time, jacobian, tolerance_m)
-    reasons: list[str | None] = [None] * count
-    for i in everyone[~(np.hypot(miss[:, 0], miss[:, 1]) <= tolerance_m)]:
-        shot, reasons[i] = _search(shots, i, x[i, 1], start[i, 0], tolerance_m)
-        x[i], miss[i], time[i] = (shot.elevation_rad, shot.bearing_rad), shot.miss_m, shot.time_s
-    size = np.hypot(miss[:, 0], miss[:, 1])
-    results = []
-    for i, solution in enumerate(solutions):
-        elevation, bearing = math.degrees(x[i, 0]), math.degrees(x[i, 1]) % 360.0
-        converged = bool(size[i] <= tolerance_m)
-        message = (
-            f"landed within {tolerance_m:g} m"
-            if converged
-            else reasons[i]
-            or f"stopped {size[i]:.3g} m from the target after {shots.flights[i]} flights: the "
-            "3DOF's crossing settles no closer on its branch"
-        )
-        results.append(
-            Verification(
-                mks_miss_m=float(first[i]) if np.isfinite(first[i]) else math.inf,
-                elevation_deg=elevation,
-                bearing_deg=bearing,
-                elevation_change_deg=elevation - solution.elevation_deg,
-                bearing_change_deg=(math.degrees(x[i, 1] - start[i, 1]) + 180.0) % 360.0 - 180.0,
-                miss_m=float(size[i]) if np.isfinite(size[i]) else math.inf,
-                time_of_flight_s=float(time[i]),
-                flights=int(shots.flights[i]),
-                converged=converged,
-                message=message,
-                rhs_evaluations=int(shots.rhs_evaluations[i]),
-            )
-        )
-    return results
+
+
+def _verification(
+    solution: FiringSolution, x, start, first, size, time, reason, shots, i, tolerance_m
+) -> Verification:
+    """The Verification of ``solution`` (index ``i`` of the batch ``shots``), refined to
+    ``x`` (rad) from ``start`` with the 3DOF's miss ``first`` (m) there and ``size`` at the
+    end, arriving at ``time`` (s); ``reason``, why its root is missing (None where it is not,
+    or not shown so)."""
+    elevation, bearing = math.degrees(x[0]), math.degrees(x[1]) % 360.0
+    converged = bool(size <= tolerance_m)
+    message = (
+        f"landed within {tolerance_m:g} m"
+        if converged
+        else reason
+        or f"stopped {size:.3g} m from the target after {shots.flights[i]} flights: the "
+        "3DOF's crossing settles no closer on its branch"
+    )
+    return Verification(
+        mks_miss_m=float(first) if np.isfinite(first) else math.inf,
+        elevation_deg=elevation,
+        bearing_deg=bearing,
+        elevation_change_deg=elevation - solution.elevation_deg,
+        bearing_change_deg=(math.degrees(x[1] - start[1]) + 180.0) % 360.0 - 180.0,
+        miss_m=float(size) if np.isfinite(size) else math.inf,
+        time_of_flight_s=float(time),
+        flights=int(shots.flights[i]),
+        converged=converged,
+        message=message,
+        rhs_evaluations=int(shots.rhs_evaluations[i]),
+    )
 
 
 @overload
@@ -536,17 +562,7 @@ def verify_with_3dof(gun, targets, solutions, *, rtol=1e-9, tolerance_m=LANDED_M
     """
     gun = check_gun(gun)
     points, single = check_targets(targets)
-    chosen = [solutions] if single else list(solutions) if isinstance(solutions, Sequence) else None
-    if chosen is None or len(chosen) != len(points):
-        raise ValueError(
-            "solutions must be one FiringSolution per target "
-            f"({len(points)} targets; got {type(solutions).__name__})"
-        )
-    for index, solution in enumerate(chosen):
-        if not isinstance(solution, FiringSolution):
-            raise TypeError(
-                f"solutions[{index}] must be a FiringSolution; got {type(solution).__name__}"
-            )
+    chosen = _check_solutions(solutions, single, len(points))
     tolerance = check_range(
         real_number(tolerance_m, "tolerance_m"), "tolerance_m", low=0.0, low_inclusive=False
     )
@@ -558,6 +574,23 @@ def verify_with_3dof(gun, targets, solutions, *, rtol=1e-9, tolerance_m=LANDED_M
         chunks = sweep(refine, client_shares(list(zip(points, chosen)), client), client=client)
         results = [result for chunk in chunks for result in chunk]
     return results[0] if single else results
+
+
+def _check_solutions(solutions, single: bool, count: int) -> list[FiringSolution]:
+    """``solutions`` as a list, checked to be one FiringSolution for each of ``count`` targets
+    (one, not in a sequence, where ``single``)."""
+    chosen = [solutions] if single else list(solutions) if isinstance(solutions, Sequence) else None
+    if chosen is None or len(chosen) != count:
+        raise ValueError(
+            "solutions must be one FiringSolution per target "
+            f"({count} targets; got {type(solutions).__name__})"
+        )
+    for index, solution in enumerate(chosen):
+        if not isinstance(solution, FiringSolution):
+            raise TypeError(
+                f"solutions[{index}] must be a FiringSolution; got {type(solution).__name__}"
+            )
+    return chosen
 
 
 def _refine_chunk(chunk, gun, rtol, tolerance_m) -> list[Verification]:

@@ -45,7 +45,7 @@ from scipy.optimize import brentq, minimize_scalar
 from ...engines import eci
 from ...foundation import earth
 from ...foundation.caching import cached_copies
-from ...foundation.validation import check_choice, check_range, probability, real_number
+from ...foundation.validation import Bounds, check_choice, probability, real_number
 from ...models.atmosphere import SOUND_SQUARED_PER_KELVIN
 from ...models.drag import ExponentialDragLaw
 from ...models.launch import Launch, Launches
@@ -249,8 +249,8 @@ def _check_drag_area(drag_area) -> float | None:
     """``drag_area`` (Cd0 A, m^2) as a float > 0, or None (the model's own)."""
     if drag_area is None:
         return None
-    return check_range(
-        real_number(drag_area, "drag_area"), "drag_area", low=0.0, low_inclusive=False, unit="m^2"
+    return Bounds(low=0.0, low_inclusive=False, unit="m^2").check(
+        real_number(drag_area, "drag_area"), "drag_area"
     )
 
 
@@ -616,7 +616,7 @@ def site_equivalence_p_value(
     from scipy.stats import ttest_ind
 
     barbados, yuma = _site_samples(quantity, model)
-    width = check_range(real_number(margin, "margin"), "margin", low=0.0, low_inclusive=False)
+    width = Bounds(low=0.0, low_inclusive=False).check(real_number(margin, "margin"), "margin")
     if relative:
         width *= abs(np.mean(np.concatenate([barbados, yuma])))
     above = ttest_ind(barbados + width, yuma, equal_var=False, alternative="greater").pvalue

@@ -48,8 +48,8 @@ from scipy.stats import bootstrap
 from ...engines import eci
 from ...foundation.caching import cached_copies
 from ...foundation.validation import (
+    Bounds,
     check_choice,
-    check_range,
     probability,
     real_array,
     real_number,
@@ -124,7 +124,7 @@ class Interval(NamedTuple):
 def uniform_quantisation_std(step: float) -> float:
     """Standard deviation of a value known only to the nearest multiple of ``step``: uniform
     over +- step / 2, sd = step / sqrt(12)."""
-    return check_range(real_number(step, "step"), "step", low=0.0) / math.sqrt(12.0)
+    return Bounds(low=0.0).check(real_number(step, "step"), "step") / math.sqrt(12.0)
 
 
 def _check_bootstrap(confidence, resamples, seed):
@@ -471,7 +471,7 @@ def apogee_sensitivities(
 
 
 def _positive(value, name):
-    return check_range(real_number(value, name), name, low=0.0, low_inclusive=False)
+    return Bounds(low=0.0, low_inclusive=False).check(real_number(value, name), name)
 
 
 @dataclass(frozen=True)
@@ -535,7 +535,7 @@ def scatter_budget(
 
 
 def _nonnegative(value, name):
-    return check_range(real_number(value, name), name, low=0.0)
+    return Bounds(low=0.0).check(real_number(value, name), name)
 
 
 def scatter_budget_table(model: str = "dissertation", confidence: float = 0.95) -> pd.DataFrame:

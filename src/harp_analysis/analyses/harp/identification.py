@@ -46,13 +46,7 @@ from scipy.stats import norm
 
 from ...engines import eci
 from ...foundation.caching import cached_copies
-from ...foundation.validation import (
-    check_choice,
-    check_range,
-    probability,
-    real_number,
-    whole_number,
-)
+from ...foundation.validation import Bounds, check_choice, probability, real_number, whole_number
 from . import apogees
 from . import rounds as harp_rounds
 
@@ -104,7 +98,9 @@ def _is_dissertation(model: eci.EciModel) -> bool:
 
 def rounding_rms_km(resolution_m: float = ERROR_COLUMN_RESOLUTION_M) -> float:
     """RMS (km) of the rounding error of one printed Error: uniform over one print step."""
-    step = check_range(real_number(resolution_m, "resolution_m"), "resolution_m", low=0.0, unit="m")
+    step = Bounds(low=0.0, unit="m").check(
+        real_number(resolution_m, "resolution_m"), "resolution_m"
+    )
     return step / math.sqrt(12) / _KM
 
 

@@ -181,6 +181,17 @@ def _radar_field(text, column, where):
     return value
 
 
+def _radar_row(fields: list[str], where: str) -> list:
+    """A data line's ``fields``, one per column of the header, each parsed
+    (:func:`_radar_field`)."""
+    if len(fields) != len(_RADAR_HEADER):
+        column = _RADAR_HEADER[min(len(fields), len(_RADAR_HEADER) - 1)]
+        raise HarpDataError(
+            f"{where}, column {column!r}: expected {len(_RADAR_HEADER)} fields, got {len(fields)}"
+        )
+    return [_radar_field(t, c, where) for c, t in zip(_RADAR_HEADER, fields)]
+
+
 def _read_radar(path: Path) -> pd.DataFrame:
     rows, lines, provenance, header_seen = [], [], [], False
     for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
@@ -198,13 +209,7 @@ def _read_radar(path: Path) -> pd.DataFrame:
                 )
             header_seen = True
             continue
-        if len(fields) != len(_RADAR_HEADER):
-            column = _RADAR_HEADER[min(len(fields), len(_RADAR_HEADER) - 1)]
-            raise HarpDataError(
-                f"{where}, column {column!r}: expected {len(_RADAR_HEADER)} "
-                f"fields, got {len(fields)}"
-            )
-        rows.append([_radar_field(t, c, where) for c, t in zip(_RADAR_HEADER, fields)])
+        rows.append(_radar_row(fields, where))
         lines.append(number)
     if not header_seen:
         raise HarpDataError(f"{path}: no header line")

@@ -178,6 +178,9 @@ def draw_sensitivity(indices: dict[str, pd.DataFrame]):
 #: Figure X.5's markers: (a) the statistic, (b) the air each site's rounds were flown in.
 _STATISTIC_MARKERS = {"mean": "o", "std": "s"}
 _AIR_MARKERS = {"site": "^", "temperature": "D"}
+#: Figure X.5's hatched band behind the statistics of the site the drag area was fitted to.
+_RECOVERED_BAND: dict[str, Any] = {"facecolor": "none", "edgecolor": OKABE_ITO["grey"], "lw": 0.0,
+                                   "hatch": "////", "alpha": 0.5, "zorder": 0}  # fmt: skip
 
 
 def _interval_point(ax, y: float, estimate_m: float, low_m: float, high_m: float, marker: str):
@@ -216,41 +219,9 @@ def draw_harp_confidence(
     drawn apart on a hatched band and labelled so. One legend below both."""
     fig, (stats, transfer) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 3.9), layout="constrained")
     text_look = {"markersize": 9, "mew": 1.6, "zorder": 5, **style("text")}
-    band: dict[str, Any] = {"facecolor": "none", "edgecolor": OKABE_ITO["grey"], "lw": 0.0,
-                            "hatch": "////", "alpha": 0.5, "zorder": 0}  # fmt: skip
     recovered = [site == recovered_site for site, _ in residuals.index]
-    for y, is_recovered in enumerate(recovered):
-        if is_recovered:
-            stats.axhspan(y - 0.5, y + 0.5, **band)
-    for y, ((site, statistic), row) in enumerate(residuals.iterrows()):
-        _interval_point(stats, y, row.estimate_m, row.low_m, row.high_m,
-                        _STATISTIC_MARKERS[statistic])  # fmt: skip
-        text = (text_std_km if statistic == "std" else text_mean_km).get(site)
-        if text is not None:
-            stats.plot(text, y, **text_look)
-    stats.set_yticks(
-        range(len(residuals)),
-        [
-            f"{s.capitalize()}, {t}" + ("\n(recovered)" if is_recovered else "")
-            for (s, t), is_recovered in zip(residuals.index, recovered)
-        ],
-        fontsize=8,
-    )
-    stats.set_xlabel("residual statistic (km)")
-    stats.set_title("(a) residuals: measured $-$ MKS", fontsize=9.5)
-    for y, row in enumerate(transfers.itertuples()):
-        _interval_point(transfer, y, row.mean_residual_m, row.mean_residual_m_low,
-                        row.mean_residual_m_high, _AIR_MARKERS[row.densities])  # fmt: skip
-        if row.predict_site in text_mean_km:
-            transfer.plot(text_mean_km[row.predict_site], y, **text_look)
-    labels = [
-        f"{r.fit_site.capitalize()} $\\to$ {r.predict_site.capitalize()},\n"
-        + ("text's air" if r.densities == "site" else "air from Mach")
-        for r in transfers.itertuples()
-    ]
-    transfer.set_yticks(range(len(transfers)), labels, fontsize=8)
-    transfer.set_xlabel("mean residual (km)")
-    transfer.set_title("(b) the other site's drag area", fontsize=9.5)
+    _draw_residual_statistics(stats, residuals, recovered, text_look, text_std_km, text_mean_km)
+    _draw_transfers(transfer, transfers, text_look, text_mean_km)
     for ax in (stats, transfer):
         ax.axvline(0.0, color=OKABE_ITO["grey"], lw=0.8)
         ax.invert_yaxis()
@@ -265,10 +236,57 @@ def draw_harp_confidence(
         Line2D([], [], label="the text's value", **text_look),
     ]  # fmt: skip
     if any(recovered):
-        handles.append(Patch(**band, label="(a) recovered: drag area fitted to these rounds"))
+        handles.append(
+            Patch(**_RECOVERED_BAND, label="(a) recovered: drag area fitted to these rounds")
+        )
     fig.legend(handles=handles, loc="outside lower center", ncol=2 if any(recovered) else 3,
                fontsize=8)  # fmt: skip
     return fig
+
+
+def _draw_residual_statistics(
+    ax, residuals: pd.DataFrame, recovered: list[bool], text_look: dict, text_std_km: dict,
+    text_mean_km: dict,
+) -> None:  # fmt: skip
+    """Figure X.5 (a): each site's residual mean and standard deviation with their intervals,
+    the text's values beside them, the ``recovered`` site's rows on a hatched band."""
+    for y, is_recovered in enumerate(recovered):
+        if is_recovered:
+            ax.axhspan(y - 0.5, y + 0.5, **_RECOVERED_BAND)
+    for y, ((site, statistic), row) in enumerate(residuals.iterrows()):
+        _interval_point(ax, y, row.estimate_m, row.low_m, row.high_m,
+                        _STATISTIC_MARKERS[statistic])  # fmt: skip
+        text = (text_std_km if statistic == "std" else text_mean_km).get(site)
+        if text is not None:
+            ax.plot(text, y, **text_look)
+    ax.set_yticks(
+        range(len(residuals)),
+        [
+            f"{s.capitalize()}, {t}" + ("\n(recovered)" if is_recovered else "")
+            for (s, t), is_recovered in zip(residuals.index, recovered)
+        ],
+        fontsize=8,
+    )
+    ax.set_xlabel("residual statistic (km)")
+    ax.set_title("(a) residuals: measured $-$ MKS", fontsize=9.5)
+
+
+def _draw_transfers(ax, transfers: pd.DataFrame, text_look: dict, text_mean_km: dict) -> None:
+    """Figure X.5 (b): the mean residual of one site's rounds predicted with the drag area
+    fitted at the other, in either air, with its interval and the text's mean beside it."""
+    for y, row in enumerate(transfers.itertuples()):
+        _interval_point(ax, y, row.mean_residual_m, row.mean_residual_m_low,
+                        row.mean_residual_m_high, _AIR_MARKERS[row.densities])  # fmt: skip
+        if row.predict_site in text_mean_km:
+            ax.plot(text_mean_km[row.predict_site], y, **text_look)
+    labels = [
+        f"{r.fit_site.capitalize()} $\\to$ {r.predict_site.capitalize()},\n"
+        + ("text's air" if r.densities == "site" else "air from Mach")
+        for r in transfers.itertuples()
+    ]
+    ax.set_yticks(range(len(transfers)), labels, fontsize=8)
+    ax.set_xlabel("mean residual (km)")
+    ax.set_title("(b) the other site's drag area", fontsize=9.5)
 
 
 def _judged_label(row) -> str:

@@ -1,5 +1,6 @@
 """The fire-control figures (X.1, X.2): reporting on :mod:`.envelope`'s miss maps; and the
-calibrated MKS's roots against the ECI MKS's (:mod:`.model_comparison`), drawn in notebook 07."""
+calibrated MKS's roots against the ECI MKS's (:mod:`.studies.model_comparison`), drawn in
+notebook 07."""
 
 from __future__ import annotations
 
@@ -173,9 +174,9 @@ _MOST_FLIGHTS = 10
 def draw_model_comparison(misses: pd.DataFrame, raids: dict[str, pd.DataFrame]):
     """Left: the share of roots (cumulative) whose 3DOF flight misses the aim by less than a
     distance, for the ECI MKS's roots and the calibrated MKS's own (``misses``:
-    :func:`.model_comparison.compare_models`; roots whose flight never gets there left out).
+    :func:`.studies.model_comparison.compare_models`; roots whose flight never gets there left out).
     Right: the 3DOF flights the verified raid takes to land each root, for each model's roots
-    it lands (``raids``: :func:`.model_comparison.verified_raid` by model)."""
+    it lands (``raids``: :func:`.studies.model_comparison.verified_raid` by model)."""
     fig, (left, right) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 2.8), layout="constrained")
     for model, whose, label, engine in _MODELS:
         rows = misses[(misses.model == model) & (misses.solved_by == whose)]

@@ -1,6 +1,5 @@
-"""The first-guess figure (issue 24 item 4): reporting on
-:mod:`~harp_analysis.analyses.fire_control.first_guess`'s comparison of the ECI MKS and the improved
-MKS as the fire-control solver's model."""
+"""The first-guess figure (issue 24 item 4): reporting on :mod:`.studies.first_guess`'s
+comparison of the ECI MKS and the improved MKS as the fire-control solver's model."""
 
 from __future__ import annotations
 
@@ -12,7 +11,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import MaxNLocator
 
-from ...analyses.fire_control.first_guess import COLUMNS, MODELS, ROOTS
+from ...analyses.fire_control.studies.first_guess import COLUMNS, MODELS, ROOTS
 from ..plotting import ENGINE_STYLES, FULL_WIDTH_IN, OKABE_ITO, new_figure
 
 __all__ = ["MODEL_NAMES", "draw_first_guess_comparison"]
@@ -45,7 +44,7 @@ def _title(frame: pd.DataFrame) -> str:
 
 
 def draw_first_guess_comparison(frame: pd.DataFrame) -> Figure:
-    """Two panels of :func:`.first_guess.compare_first_guesses`'s ``frame``, over the
+    """Two panels of :func:`.studies.first_guess.compare_first_guesses`'s ``frame``, over the
     point-roots where both models have a root: left, the empirical distribution of the 3DOF's
     miss at each model's first guess (log scale; a line per model, its marker the root; a shot
     that never reaches the target's altitude keeps its curve below 1);
@@ -61,6 +60,27 @@ def draw_first_guess_comparison(frame: pd.DataFrame) -> Figure:
     if paired.empty:
         raise ValueError("frame has no point-root where both models have a root")
     fig, (left, right) = new_figure(1, 2, figsize=(FULL_WIDTH_IN, 4.0), layout="constrained")
+    _draw_misses(left, paired)
+    _draw_flights(right, paired)
+    no_root = int(
+        frame[(frame.model == "improved") & frame.elevation_deg.isna()]
+        .groupby(["site", "bearing_deg", "downrange_m", "altitude_m", "root"])
+        .ngroups
+    )
+    shots = len(paired) // len(MODELS)
+    fig.legend(handles=_legend_handles(), loc="outside lower center", ncol=3, fontsize=7.5)
+    fig.suptitle(
+        f"{_title(frame)}\n{shots} shots where both models have a root; the improved MKS has "
+        f"none for {no_root} more",
+        fontsize=9,
+    )
+    return fig
+
+
+def _draw_misses(ax, paired: pd.DataFrame) -> None:
+    """The left panel: per model and root, the empirical distribution of the 3DOF's miss at
+    the first guess (log scale); a shot that never reaches the target's altitude keeps its
+    curve below 1."""
     for model in MODELS:
         for root in ROOTS:
             rows = paired[(paired.model == model) & (paired.root == root)]
@@ -68,7 +88,7 @@ def draw_first_guess_comparison(frame: pd.DataFrame) -> Figure:
             if not miss.size:
                 continue
             share = np.arange(1, miss.size + 1) / len(rows)
-            left.step(
+            ax.step(
                 miss,
                 share,
                 where="post",
@@ -77,16 +97,21 @@ def draw_first_guess_comparison(frame: pd.DataFrame) -> Figure:
                 markerfacecolor="white" if root == "high" else _STYLES[model]["color"],
                 **_STYLES[model],
             )
-    left.set_xscale("log")
-    left.set_xlabel(r"3DOF miss at the first guess, $|\Delta \mathbf{r}|$ (m)")
-    left.set_ylabel(r"share of shots, miss $\leq |\Delta \mathbf{r}|$")
-    left.set_ylim(0.0, 1.02)
+    ax.set_xscale("log")
+    ax.set_xlabel(r"3DOF miss at the first guess, $|\Delta \mathbf{r}|$ (m)")
+    ax.set_ylabel(r"share of shots, miss $\leq |\Delta \mathbf{r}|$")
+    ax.set_ylim(0.0, 1.02)
+
+
+def _draw_flights(ax, paired: pd.DataFrame) -> None:
+    """The right panel: the 3DOF flights each refinement took to land within 1 m, a bar per
+    model (hatched the improved MKS) and a vertical line at each model's mean."""
     counts = sorted(paired.flights.unique())
     width = 0.38
     for offset, model in zip((-0.5, 0.5), MODELS):
         flights = paired[paired.model == model].flights
         heights = [int((flights == count).sum()) for count in counts]
-        right.bar(
+        ax.bar(
             np.asarray(counts) + offset * width,
             heights,
             width=width,
@@ -96,18 +121,17 @@ def draw_first_guess_comparison(frame: pd.DataFrame) -> Figure:
             linewidth=1.0,
         )
         mean = float(flights.mean())
-        right.axvline(mean, linewidth=1.0, **_STYLES[model])
-    right.set_xticks(range(min(counts), max(counts) + 1))
-    right.tick_params(axis="x", labelsize=8)
-    right.set_xlabel(r"3DOF flights to land within 1 m, $n$")
-    right.set_ylabel("shots")
-    right.yaxis.set_major_locator(MaxNLocator(integer=True))
-    right.grid(axis="x", visible=False)
-    no_root = int(
-        frame[(frame.model == "improved") & frame.elevation_deg.isna()]
-        .groupby(["site", "bearing_deg", "downrange_m", "altitude_m", "root"])
-        .ngroups
-    )
+        ax.axvline(mean, linewidth=1.0, **_STYLES[model])
+    ax.set_xticks(range(min(counts), max(counts) + 1))
+    ax.tick_params(axis="x", labelsize=8)
+    ax.set_xlabel(r"3DOF flights to land within 1 m, $n$")
+    ax.set_ylabel("shots")
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.grid(axis="x", visible=False)
+
+
+def _legend_handles() -> list[Artist]:
+    """The legend's entries: each model's line, each root's marker, each model's bars."""
     handles: list[Artist] = [
         Line2D([], [], label=MODEL_NAMES[model], linewidth=1.6, **_STYLES[model])
         for model in MODELS
@@ -134,11 +158,4 @@ def draw_first_guess_comparison(frame: pd.DataFrame) -> Figure:
         )
         for model in MODELS
     ]
-    shots = len(paired) // len(MODELS)
-    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=7.5)
-    fig.suptitle(
-        f"{_title(frame)}\n{shots} shots where both models have a root; the improved MKS has "
-        f"none for {no_root} more",
-        fontsize=9,
-    )
-    return fig
+    return handles

@@ -73,26 +73,41 @@ def draw_flyout_comparison(frame: pd.DataFrame, targets_m: Sequence[float] = TAR
         rows = frame[frame.gun == gun]
         for row, (measure, label) in enumerate(_ROWS):
             ax = axes[row, column]
-            for method in METHODS:
-                mine = rows[rows.method == method].sort_values("flights")
-                ax.plot(mine.flights, mine[measure], **_look(method, gun))
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            ax.yaxis.set_major_formatter(FuncFormatter(_plain))
-            ax.yaxis.set_minor_formatter(FuncFormatter(_twos_and_fives))
+            _draw_errors(ax, rows, gun, measure, targets_m)
             if column == 0:
                 ax.set_ylabel(label)
             if row == len(_ROWS) - 1:
                 ax.set_xlabel("3DOF flights in the table")
-            if measure == "impact_rms_m":
-                for target in targets_m:
-                    ax.axhline(target, color=OKABE_ITO["grey"], linestyle=":", linewidth=1.0)
         top = axes[0, column].secondary_xaxis(
             "top",
             functions=(lambda f: f * per_flight / 1e6, lambda mb: mb * 1e6 / per_flight),
         )
         top.set_xlabel(f"{gun}\ntable size (MB)")
-    handles = [
+    handles = _legend_handles()
+    fig.legend(handles=handles, loc="outside lower center", ncols=len(handles))
+    return fig
+
+
+def _draw_errors(
+    ax, rows: pd.DataFrame, gun: str, measure: str, targets_m: Sequence[float]
+) -> None:
+    """One panel: ``gun``'s error ``measure`` of each method against the 3DOF flights its
+    table learned from (``rows``, the gun's), log-log; the impact's with ``targets_m``."""
+    for method in METHODS:
+        mine = rows[rows.method == method].sort_values("flights")
+        ax.plot(mine.flights, mine[measure], **_look(method, gun))
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.yaxis.set_major_formatter(FuncFormatter(_plain))
+    ax.yaxis.set_minor_formatter(FuncFormatter(_twos_and_fives))
+    if measure == "impact_rms_m":
+        for target in targets_m:
+            ax.axhline(target, color=OKABE_ITO["grey"], linestyle=":", linewidth=1.0)
+
+
+def _legend_handles() -> list[Line2D]:
+    """A line per method, saying which markers are its."""
+    return [
         Line2D(
             [],
             [],
@@ -101,5 +116,3 @@ def draw_flyout_comparison(frame: pd.DataFrame, targets_m: Sequence[float] = TAR
         )
         for method in METHODS
     ]
-    fig.legend(handles=handles, loc="outside lower center", ncols=len(handles))
-    return fig

@@ -135,24 +135,11 @@ def error_figure(elevations_deg, *, lower: str | None = None, **variant):
     ax = axes[0, 0]
     lines, labels, at_apogee = [], [], []
     for elevation in elevations_deg:
-        flight, _, errors = comparisons.case("baseline", elevation, **variant)
-        x, y = errors.theta_rad * earth.RADIUS_M / 1e3, errors.total_geometric_m / 1e3
-        look = plotting.elevation_style(elevation, elevations_deg)
-        (line,) = ax.plot(x, y, label=f"{elevation:g} deg", **look)
+        line, label, error_at_apogee = _error_curve(axes, elevation, elevations_deg, lower, variant)
         lines.append(line)
-        k = int(np.argmin(np.abs(errors.time_s - flight.attrs["apogee_time_s"])))
-        at_apogee.append(y.iloc[k])
-        ax.plot(x.iloc[k], y.iloc[k], color=line.get_color(), **_APOGEE)
-        if y.max() > ERROR_TOP_KM:  # named by its off-scale note instead
-            mark_off_scale(ax, x, y, ERROR_TOP_KM, f"{elevation:g} deg")
-        else:
-            direct_labels(ax, [line], [f"{elevation:g} deg"], at=1.0)
-            labels.append(ax.texts[-1])
-        if lower == "detail":
-            axes[1, 0].plot(x, y, **look)
-            axes[1, 0].plot(x.iloc[k], y.iloc[k], color=line.get_color(), **_APOGEE)
-        elif lower == "cross range":
-            axes[1, 0].plot(flight.ground_range_m / 1e3, flight.cross_range_m, **look)
+        at_apogee.append(error_at_apogee)
+        if label is not None:
+            labels.append(label)
     ax.set_ylabel(TOTAL_ERROR_LABEL)
     ax.set_ylim(0, ERROR_TOP_KM)
     handles = [*lines, Line2D([], [], color=OKABE_ITO["grey"], **_APOGEE)]
@@ -168,6 +155,32 @@ def error_figure(elevations_deg, *, lower: str | None = None, **variant):
     place_clear(fig, ax, labels)
     plotting.keep_markers_whole(fig)  # none cut where the errors start, near 0, or leave the axis
     return fig
+
+
+def _error_curve(axes, elevation: float, elevations_deg, lower: str | None, variant: dict):
+    """One elevation's curve of :func:`error_figure` on its ``axes``: the error with a star at
+    the 3DOF apogee, named by a direct label or, off the axis, by its note; the lower panel's
+    curve. Returns the line, its direct label (None when off the axis) and its error at the
+    apogee (km)."""
+    ax = axes[0, 0]
+    flight, _, errors = comparisons.case("baseline", elevation, **variant)
+    x, y = errors.theta_rad * earth.RADIUS_M / 1e3, errors.total_geometric_m / 1e3
+    look = plotting.elevation_style(elevation, elevations_deg)
+    (line,) = ax.plot(x, y, label=f"{elevation:g} deg", **look)
+    k = int(np.argmin(np.abs(errors.time_s - flight.attrs["apogee_time_s"])))
+    ax.plot(x.iloc[k], y.iloc[k], color=line.get_color(), **_APOGEE)
+    label = None
+    if y.max() > ERROR_TOP_KM:  # named by its off-scale note instead
+        mark_off_scale(ax, x, y, ERROR_TOP_KM, f"{elevation:g} deg")
+    else:
+        direct_labels(ax, [line], [f"{elevation:g} deg"], at=1.0)
+        label = ax.texts[-1]
+    if lower == "detail":
+        axes[1, 0].plot(x, y, **look)
+        axes[1, 0].plot(x.iloc[k], y.iloc[k], color=line.get_color(), **_APOGEE)
+    elif lower == "cross range":
+        axes[1, 0].plot(flight.ground_range_m / 1e3, flight.cross_range_m, **look)
+    return line, label, y.iloc[k]
 
 
 def draw_error_geometry(launch: Launch) -> Figure:

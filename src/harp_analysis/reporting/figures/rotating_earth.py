@@ -216,6 +216,12 @@ def draw_east_west(shot: Launch, correction: LaunchCorrection):
     return fig
 
 
+#: The directions :func:`label_beside_curves` tries a label in about a point: every 45°.
+_DIRECTIONS = [(math.cos(a), math.sin(a)) for a in np.linspace(0.0, 2 * math.pi, 9)[:-1]]
+#: Its gaps between a point and the label's near edge, in label heights.
+_GAPS = (0.4, 0.8, 1.4)
+
+
 def label_beside_curves(ax, lines, labels, obstacles_px=(), *, fontsize: float = 8.5) -> list:
     """Label each of ``lines`` beside itself: of the places just off its points (eight
     directions, three gaps) whose text box crosses no curve, leaves the axes nowhere and
@@ -228,40 +234,53 @@ def label_beside_curves(ax, lines, labels, obstacles_px=(), *, fontsize: float =
     marker_px = 1.5 * fontsize * ax.figure.dpi / 72.0  # a marker of about 11-13 pt
     taken = [Bbox.from_bounds(x - marker_px / 2, y - marker_px / 2, marker_px, marker_px)
              for x, y in obstacles_px]  # fmt: skip
-    directions = [(math.cos(a), math.sin(a)) for a in np.linspace(0.0, 2 * math.pi, 9)[:-1]]
     texts = []
     for k, label in enumerate(labels):
         text = ax.text(0.0, 0.0, label, ha="center", va="center", fontsize=fontsize, zorder=6,
                        color=OKABE_ITO["black"])  # fmt: skip
         size = text.get_window_extent(renderer)
-        width, height = size.width, size.height
         others = np.concatenate([c for j, c in enumerate(curves) if j != k] or [np.empty((0, 2))])
-        best, best_score = None, np.inf
-        step = max(len(curves[k]) // 80, 1)
-        for x, y in curves[k][::step]:
-            for dx, dy in directions:
-                for gap in (0.4, 0.8, 1.4):
-                    cx = x + dx * (gap * height + width / 2)
-                    cy = y + dy * (gap * height + height / 2)
-                    box = Bbox.from_bounds(cx - width / 2, cy - height / 2, width, height)
-                    if not (ax.bbox.contains(box.x0, box.y0) and ax.bbox.contains(box.x1, box.y1)):
-                        continue
-                    if any(path.intersects_bbox(box, filled=False) for path in paths):
-                        continue
-                    if any(box.overlaps(other) for other in taken):
-                        continue
-                    own = np.hypot(*(curves[k] - (cx, cy)).T).min()
-                    other = np.hypot(*(others - (cx, cy)).T).min() if len(others) else np.inf
-                    if own / other < best_score:
-                        best, best_score = (cx, cy, box), own / other
-        if best is None:  # nowhere clear: at the curve's middle, as a last resort
-            mx, my = curves[k][len(curves[k]) // 2]
-            best = (mx, my, Bbox.from_bounds(mx, my, 0.0, 0.0))
-        cx, cy, box = best
+        cx, cy, box = _place_beside(ax, curves[k], others, paths, taken, size.width, size.height)
         taken.append(box)
         text.set_position(ax.transData.inverted().transform((cx, cy)))
         texts.append(text)
     return texts
+
+
+def _place_beside(ax, own, others, paths, taken, width: float, height: float):
+    """Where :func:`label_beside_curves` puts a ``width`` by ``height`` label of curve ``own``
+    (display points), among curves ``others``: its centre and box. The places are tried
+    about every 80th point of ``own``; one nowhere clear (:func:`_clear`) is the curve's
+    middle, as a last resort."""
+    best, best_score = None, np.inf
+    step = max(len(own) // 80, 1)
+    for x, y in own[::step]:
+        for dx, dy in _DIRECTIONS:
+            for gap in _GAPS:
+                cx = x + dx * (gap * height + width / 2)
+                cy = y + dy * (gap * height + height / 2)
+                box = Bbox.from_bounds(cx - width / 2, cy - height / 2, width, height)
+                if not _clear(ax, box, paths, taken):
+                    continue
+                near = np.hypot(*(own - (cx, cy)).T).min()
+                other = np.hypot(*(others - (cx, cy)).T).min() if len(others) else np.inf
+                if near / other < best_score:
+                    best, best_score = (cx, cy, box), near / other
+    if best is None:
+        mx, my = own[len(own) // 2]
+        best = (mx, my, Bbox.from_bounds(mx, my, 0.0, 0.0))
+    return best
+
+
+def _clear(ax, box, paths, taken) -> bool:
+    """Whether ``box`` lies within ``ax``, crosses none of ``paths`` and covers none of
+    ``taken`` (boxes, display points)."""
+    return (
+        ax.bbox.contains(box.x0, box.y0)
+        and ax.bbox.contains(box.x1, box.y1)
+        and not any(path.intersects_bbox(box, filled=False) for path in paths)
+        and not any(box.overlaps(other) for other in taken)
+    )
 
 
 #: The distance axis of Figs 5.4-5.9 (km): the same in every figure.

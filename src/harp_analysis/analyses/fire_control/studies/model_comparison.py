@@ -25,11 +25,11 @@ from functools import cache
 import numpy as np
 import pandas as pd
 
-from ...foundation import earth
-from ...foundation.validation import check_choice, check_range, real_number
-from ...models.launch import Launch
-from .envelope import three_dof_misses
-from .firing import (
+from ....foundation import earth
+from ....foundation.validation import check_choice, check_range, real_number
+from ....models.launch import Launch
+from ..envelope import three_dof_misses
+from ..firing import (
     BARBADOS_HP,
     BRANCHES,
     MODELS,
@@ -38,9 +38,9 @@ from .firing import (
     destination,
     great_circle,
 )
-from .firing import firing_solutions as solve
-from .intercepts import raid, raid_roots, raid_windows
-from .verification import verify_with_3dof
+from ..firing import firing_solutions as solve
+from ..intercepts import raid, raid_roots, raid_windows
+from ..verification import verify_with_3dof
 
 __all__ = [
     "DOWNRANGES_M",
@@ -112,44 +112,54 @@ def compare_models(
     if len(targets) != len(branches):
         raise ValueError(f"one branch per aim: {len(targets)} aims, {len(branches)} branches")
     branches = [check_choice(branch, "branch", BRANCHES) for branch in branches]
-    rows, flown = [], []
+    found = []
     for branch in BRANCHES:
         chosen = [i for i, name in enumerate(branches) if name == branch]
-        if not chosen:
-            continue
-        aims = [targets[i] for i in chosen]
-        for model in MODELS:
-            for index, target, found in zip(
-                chosen, aims, solve(gun, aims, branch=branch, model=model), strict=True
-            ):
-                for name in ("low", "high"):
-                    root = getattr(found, name)
-                    if root is None:
-                        continue
-                    angle, bearing = great_circle(gun, target)
-                    rows.append(
-                        dict(
-                            aim=index,
-                            bearing_deg=math.degrees(bearing),
-                            downrange_m=angle * earth.RADIUS_M,
-                            altitude_m=target.altitude_m,
-                            branch=branch,
-                            root=name,
-                            model=model,
-                            solved_by=root.model,
-                            reason=root.reason,
-                            elevation_deg=root.elevation_deg,
-                            aim_bearing_deg=root.bearing_deg,
-                            time_of_flight_s=root.time_of_flight_s,
-                        )
-                    )
-                    flown.append((target, root))
-    frame = pd.DataFrame(rows, columns=list(COLUMNS))
-    if flown:
-        points, roots = zip(*flown, strict=True)
+        if chosen:
+            found += _roots(gun, targets, chosen, branch)
+    frame = pd.DataFrame([row for row, _, _ in found], columns=list(COLUMNS))
+    if found:
+        _, points, roots = zip(*found, strict=True)
         frame["miss_3dof_m"] = three_dof_misses(gun, list(points), list(roots), rtol)[0]
     frame.attrs["aims"] = len(targets)
     return frame
+
+
+def _roots(gun: Launch, targets: list[TargetPoint], chosen: list[int], branch: str) -> list:
+    """Every root by each model of the aims ``chosen`` (indices into ``targets``, all met on
+    ``branch``), a model's solved together: (its row of :func:`compare_models`, aim, root)."""
+    aims = [targets[i] for i in chosen]
+    found = []
+    for model in MODELS:
+        solved = solve(gun, aims, branch=branch, model=model)
+        for index, target, solutions in zip(chosen, aims, solved, strict=True):
+            for name in ("low", "high"):
+                root = getattr(solutions, name)
+                if root is not None:
+                    found.append(
+                        (_row(gun, index, target, branch, name, model, root), target, root)
+                    )
+    return found
+
+
+def _row(gun: Launch, index: int, target: TargetPoint, branch, name, model, root) -> dict:
+    """The row of :func:`compare_models` of aim ``index``'s root ``name`` by ``model``, before
+    the 3DOF flies it."""
+    angle, bearing = great_circle(gun, target)
+    return dict(
+        aim=index,
+        bearing_deg=math.degrees(bearing),
+        downrange_m=angle * earth.RADIUS_M,
+        altitude_m=target.altitude_m,
+        branch=branch,
+        root=name,
+        model=model,
+        solved_by=root.model,
+        reason=root.reason,
+        elevation_deg=root.elevation_deg,
+        aim_bearing_deg=root.bearing_deg,
+        time_of_flight_s=root.time_of_flight_s,
+    )
 
 
 def summary(frame: pd.DataFrame) -> pd.DataFrame:

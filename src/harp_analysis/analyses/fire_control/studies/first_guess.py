@@ -39,15 +39,15 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
 
-from ...engines import mks_improved
-from ...foundation import earth
-from ...foundation.validation import ModelValidityWarning, check_choice, check_range, real_number
-from ...models.launch import Launch
-from ...models.sites import YUMA
-from ...models.trajectory import rotate_about_axis
-from . import firing
-from .firing import FiringSolution, TargetPoint
-from .verification import verify_with_3dof
+from ....engines import mks_improved
+from ....foundation import earth
+from ....foundation.validation import ModelValidityWarning, check_choice, check_range, real_number
+from ....models.launch import Launch
+from ....models.sites import YUMA
+from ....models.trajectory import rotate_about_axis
+from .. import firing
+from ..firing import FiringSolution, TargetPoint
+from ..verification import verify_with_3dof
 
 __all__ = [
     "MODELS",
@@ -264,20 +264,13 @@ def _improve(
             step = -np.linalg.solve(jacobian, miss)
         except np.linalg.LinAlgError:
             return None, "the Jacobian became singular"
-        for _ in range(_HALVINGS + 1):
-            trial = x + step
-            trial[0] = min(max(trial[0], _LOWEST_RAD), _HIGHEST_RAD)
-            found = _residual(_fly(gun, trial, calibration), target, branch, aim)
-            solves += 1
-            if found is not None and np.hypot(*found[0]) < size:
-                break
-            step = 0.5 * step
-        else:
+        trial, found, tries = _closer(gun, x, step, size, calibration, target, branch, aim)
+        solves += tries
+        if found is None:
             return None, (
                 f"no step from {size:.3g} m got closer (the improved MKS has no solution or "
                 "does not reach the target's altitude there)"
             )
-        assert found is not None  # the loop above breaks only on a closer landing
         taken = trial - x
         jacobian += np.outer(found[0] - miss - jacobian @ taken, taken) / float(taken @ taken)
         x, (miss, when) = trial, found
@@ -296,6 +289,20 @@ def _improve(
         mks_solves=solves,
         jacobian_m_rad=jacobian,
     ), None
+
+
+def _closer(gun: Launch, x, step, size: float, calibration, target, branch: str, aim):
+    """The Newton ``step`` from ``x`` halved (at most ``_HALVINGS`` times), elevation kept in
+    the solver's range, until the improved MKS lands closer than ``size`` (m): the point, its
+    :func:`_residual` (None where no step got closer) and the solves spent."""
+    for tries in range(1, _HALVINGS + 2):
+        trial = x + step
+        trial[0] = min(max(trial[0], _LOWEST_RAD), _HIGHEST_RAD)
+        found = _residual(_fly(gun, trial, calibration), target, branch, aim)
+        if found is not None and np.hypot(*found[0]) < size:
+            return trial, found, tries
+        step = 0.5 * step
+    return trial, None, tries
 
 
 def _in_band(gun: Launch, solution: FiringSolution) -> bool:
@@ -354,6 +361,100 @@ def _verify(gun: Launch, entries: list, which: int) -> tuple[list, float]:
     return [by_entry.get(id(entry)) for entry in entries], seconds
 
 
+def _first_guesses(gun: Launch, points, targets, branch, calibration) -> list[tuple]:
+    """Each root of the ECI MKS at each of ``targets`` (``points`` their bearings, downranges
+    and altitudes) and the improved MKS's from it (:func:`_improve`), timed: (point, target,
+    root name, MKS root, improved root or None, MKS time, improved time, why no improved root)."""
+    firing.firing_solutions(gun, targets[:1], branch=branch)  # the kernels loaded
+    entries = []
+    for point, target in zip(points, targets):
+        start = time.perf_counter()
+        solutions = firing.firing_solutions(gun, target, branch=branch)
+        mks_time = (time.perf_counter() - start) / max(len(solutions.roots), 1)
+        for name in ROOTS:
+            root = getattr(solutions, name)
+            if root is None:
+                continue
+            start = time.perf_counter()
+            better, why = _improve(gun, target, root, _ITERATIONS, calibration)
+            own = time.perf_counter() - start
+            entries.append((point, target, name, root, better, mks_time, mks_time + own, why))
+    return entries
+
+
+def _check_both(gun: Launch, entries: list) -> tuple[dict, dict, int, float]:
+    """Both models' roots of ``entries`` (:func:`_first_guesses`) checked by the 3DOF, one
+    batch a model (:func:`_verify`): each model's checks and seconds a flight, and the flights
+    and seconds of both."""
+    checks, per_flight = {}, {}
+    flights, seconds = 0, 0.0
+    for model, which in (("mks", 3), ("improved", 4)):
+        checks[model], batch = _verify(gun, entries, which)
+        count = sum(check.flights for check in checks[model] if check is not None)
+        per_flight[model] = batch / max(count, 1)
+        flights, seconds = flights + count, seconds + batch
+    return checks, per_flight, flights, seconds
+
+
+def _rows(site: str, gun: Launch, entries: list, checks: dict, per_flight: dict) -> list[dict]:
+    """The rows of :func:`compare_first_guesses` of one site's ``entries``, two a root (the
+    ECI MKS's, the improved MKS's), and their 3DOF ``checks`` and seconds ``per_flight``."""
+    rows = []
+    for index, entry in enumerate(entries):
+        (bearing, downrange, altitude), _, name, root, better, *times, why = entry
+        point = dict(site=site, bearing_deg=bearing, downrange_m=downrange, altitude_m=altitude)
+        band = _in_band(gun, root if better is None else better)
+        for model, solution, model_time, reason in (
+            ("mks", root, times[0], None),
+            ("improved", better, times[1], why),
+        ):
+            row = _row(solution, model_time, checks[model][index], per_flight[model])
+            rows.append(
+                point | dict(root=name, model=model) | row | dict(in_band=band, reason=reason)
+            )
+    return rows
+
+
+#: A model's columns of :func:`compare_first_guesses` from its solution and from the solution's
+#: 3DOF check: (column, the attribute it holds, its value where there is none).
+_SOLUTION_COLUMNS = (
+    ("elevation_deg", "elevation_deg", math.nan),
+    ("aim_bearing_deg", "bearing_deg", math.nan),
+    ("model_miss_m", "miss_m", math.nan),
+    ("model_solves", "mks_solves", 0),
+)
+_CHECK_COLUMNS = (
+    ("first_guess_miss_m", "mks_miss_m", math.nan),
+    ("flights", "flights", 0),
+    ("converged", "converged", False),
+    ("miss_m", "miss_m", math.nan),
+    ("refined_elevation_deg", "elevation_deg", math.nan),
+    ("refined_bearing_deg", "bearing_deg", math.nan),
+)
+
+
+def _row(solution, model_time: float, check, check_time: float) -> dict:
+    """One model's columns of a row of :func:`compare_first_guesses`: its ``solution`` (None
+    where it found none), timed ``model_time`` (s), and that solution's 3DOF ``check`` (None
+    where there is none), at ``check_time`` (s) a flight."""
+    return (
+        _columns(solution, _SOLUTION_COLUMNS)
+        | _columns(check, _CHECK_COLUMNS)
+        | dict(
+            model_time_s=model_time,
+            refine_time_s=0.0 if check is None else check.flights * check_time,
+        )
+    )
+
+
+def _columns(item, columns) -> dict:
+    """``columns`` (column, attribute, default) of ``item``, their defaults where it is None."""
+    return {
+        name: default if item is None else getattr(item, attribute)
+        for name, attribute, default in columns
+    }
+
+
 def compare_first_guesses(
     guns: Mapping[str, Launch] = GUNS,
     bearings_deg: Sequence[float] = BEARINGS_DEG,
@@ -388,61 +489,12 @@ def compare_first_guesses(
     flights = seconds = 0.0
     for site, gun in guns.items():
         points, targets = _row_points(gun, bearings, downranges, altitudes)
-        firing.firing_solutions(gun, targets[:1], branch=branch)  # the kernels loaded
-        # (point, target, root name, MKS root, improved root, MKS time, improved time, reason)
-        entries = []
-        for point, target in zip(points, targets):
-            start = time.perf_counter()
-            solutions = firing.firing_solutions(gun, target, branch=branch)
-            mks_time = (time.perf_counter() - start) / max(len(solutions.roots), 1)
-            for name in ROOTS:
-                root = getattr(solutions, name)
-                if root is None:
-                    continue
-                start = time.perf_counter()
-                better, why = _improve(gun, target, root, _ITERATIONS, calibration)
-                own = time.perf_counter() - start
-                entries.append((point, target, name, root, better, mks_time, mks_time + own, why))
+        entries = _first_guesses(gun, points, targets, branch, calibration)
         if not entries:
             continue
-        checks, per_flight = {}, {}  # each model's verifications, and its seconds a flight
-        for model, which in (("mks", 3), ("improved", 4)):
-            checks[model], batch = _verify(gun, entries, which)
-            count = sum(check.flights for check in checks[model] if check is not None)
-            per_flight[model] = batch / max(count, 1)
-            flights, seconds = flights + count, seconds + batch
-        for index, entry in enumerate(entries):
-            (bearing, downrange, altitude), _, name, root, better, *times, why = entry
-            band = _in_band(gun, root if better is None else better)
-            for model, solution, model_time, reason in (
-                ("mks", root, times[0], None),
-                ("improved", better, times[1], why),
-            ):
-                check = checks[model][index]
-                rows.append(
-                    dict(
-                        site=site,
-                        bearing_deg=bearing,
-                        downrange_m=downrange,
-                        altitude_m=altitude,
-                        root=name,
-                        model=model,
-                        elevation_deg=math.nan if solution is None else solution.elevation_deg,
-                        aim_bearing_deg=math.nan if solution is None else solution.bearing_deg,
-                        model_miss_m=math.nan if solution is None else solution.miss_m,
-                        model_solves=0 if solution is None else solution.mks_solves,
-                        model_time_s=model_time,
-                        first_guess_miss_m=math.nan if check is None else check.mks_miss_m,
-                        flights=0 if check is None else check.flights,
-                        converged=False if check is None else check.converged,
-                        miss_m=math.nan if check is None else check.miss_m,
-                        refined_elevation_deg=math.nan if check is None else check.elevation_deg,
-                        refined_bearing_deg=math.nan if check is None else check.bearing_deg,
-                        refine_time_s=0.0 if check is None else check.flights * per_flight[model],
-                        in_band=band,
-                        reason=reason,
-                    )
-                )
+        checks, per_flight, count, batch = _check_both(gun, entries)
+        flights, seconds = flights + count, seconds + batch
+        rows += _rows(site, gun, entries, checks, per_flight)
     frame = pd.DataFrame(rows, columns=list(COLUMNS))
     frame.attrs["seconds_per_3dof_flight"] = seconds / flights if flights else math.nan
     frame.attrs["branch"] = branch

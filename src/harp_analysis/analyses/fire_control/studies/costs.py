@@ -1,9 +1,9 @@
 """Chapter 7 A's counts, built: the MKS trajectories of a firing solution against the 3DOF's
-equations of motion (:func:`~harp_analysis.analyses.fire_control.costs.shoot_3dof`, the iterative
-3DOF firing solution alone), a raid's MKS intercepts against one iterative 3DOF intercept, and one
-verified firing solution's operations, by default in :func:`.firing.barbados_case`. Counts, not wall
-times: the ledger reads them and must come out the same on every machine; the wall times of the same
-work are ``benchmarks/bench_fire_control.py``'s.
+equations of motion (:func:`~harp_analysis.analyses.fire_control.studies.costs.shoot_3dof`, the
+iterative 3DOF firing solution alone), a raid's MKS intercepts against one iterative 3DOF intercept,
+and one verified firing solution's operations, by default in :func:`.firing.barbados_case`. Counts,
+not wall times: the ledger reads them and must come out the same on every machine; the wall times of
+the same work are ``benchmarks/bench_fire_control.py``'s.
 
 SI inside (m, s, rad); degrees only in the arguments and fields named ``_deg``.
 """
@@ -18,13 +18,13 @@ from functools import cache
 import numpy as np
 from scipy import optimize
 
-from ...engines import threedof
-from ...foundation import earth
-from ...foundation.validation import check_choice
-from ...models.launch import Launch
-from ...models.trajectory import EndAltitudeNotCrossedWarning
-from .. import effort
-from .firing import (
+from ....engines import threedof
+from ....foundation import earth
+from ....foundation.validation import check_choice
+from ....models.launch import Launch
+from ....models.trajectory import EndAltitudeNotCrossedWarning
+from ... import effort
+from ..firing import (
     BARBADOS_HP,
     BRANCHES,
     TargetPoint,
@@ -35,8 +35,8 @@ from .firing import (
     firing_solutions,
     great_circle,
 )
-from .intercepts import raid, raid_roots, raid_windows
-from .verification import LANDED_M, Verification, verify_with_3dof
+from ..intercepts import raid, raid_roots, raid_windows
+from ..verification import LANDED_M, Verification, verify_with_3dof
 
 __all__ = [
     "shoot_3dof",
@@ -208,7 +208,7 @@ def eom_evaluations_per_3dof_firing_solution(
     gun: Launch | None = None, target: TargetPoint | None = None, *, rtol: float = 1e-9
 ) -> Verification:
     """The iterative 3DOF firing solution, whose ``rhs_evaluations`` count the 3DOF's equations
-    of motion solved (:func:`~harp_analysis.analyses.fire_control.costs.shoot_3dof` from the
+    of motion solved (:func:`~harp_analysis.analyses.fire_control.studies.costs.shoot_3dof` from the
     drag-free conic, every flight of the shooting included) of :func:`.firing.barbados_case` by
     default. Chapter 7 A: "hundreds of thousands or millions of numerical EOM solutions"."""
     gun, target = barbados_case() if gun is None or target is None else (gun, target)
