@@ -140,6 +140,8 @@ nitpick_ignore_regex = [
     (r"py:(class|obj|data|exc)", rf"({'|'.join(map(re.escape, _BUILTINS))})"),
     # a dataclass whose annotations autodoc prints as the strings they are ('tuple[str, ...]')
     (r"py:class", r"'.*"),
+    # a private class a public signature names (mlt.SEGMENT_LOOP, _march, returns a _Flight)
+    (r"py:class", r"harp_analysis\.[\w.]*\._\w+"),
 ]
 
 

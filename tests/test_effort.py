@@ -149,7 +149,7 @@ def test_mlt_calls_per_segment():
     count = {code.co_qualname: k for code, k in calls.items() if code.co_filename == mlt.__file__}
     assert count["segment_coefficients"] == 2 * n
     assert count["_solve_segment"] == count["_Segment.duration_s"] == n
-    brentq_evaluations = count.get("simulate_mlt.<locals>.<lambda>", 0)
+    brentq_evaluations = count.get(f"{mlt.SEGMENT_LOOP.__name__}.<locals>.<lambda>", 0)
     assert count["propagate_segment"] == 3 * n + brentq_evaluations + 2
     assert count["_phi"] >= 4 * count["propagate_segment"]
     assert n / 4 < count["_radial_velocity"] < 3 * n / 4  # the checks stop at the apogee

@@ -65,22 +65,21 @@ times as accurate, once its steps also ended on the table's Mach nodes
 from 24,974 to 25,031 when its right-hand side was compiled (libm's exp for numpy's; one unit
 in the last place of the density alone does the same): 0.3 %.
 
-MLT (:func:`mlt_flops`) costs every call that :func:`harp_analysis.engines.mlt.simulate_mlt`'s
-segment loop makes, times the called function's own count, plus the loop's own operations once per
-segment. The calls are counted while the flight runs (a profile hook, like an integrator's
-count of its evaluations) and the count stops where the loop ends. Per segment, with the
-coefficients at its ``"middle"``, that is: ``segment_coefficients`` twice (at the start, and at
-the middle of the first pass), each with its rotation, wind, gravity, air and coefficient
-table; ``propagate_segment`` three times (the first pass to the end and to the middle in
-``_solve_segment``, the second pass to the end in ``simulate_mlt``), each with two
-``_scalar_solution`` and one ``_epicyclic_solution``, so four ``_phi``; two more
-``_rotation`` for the trapezoid mean; the impact check ``_altitude``; and, in every segment up
-to the apogee's, ``_radial_velocity``, which propagates to the segment's end once more (the
-state the second pass just computed). The apogee's segment adds the radial velocity at its
-start, the brentq evaluations and the apogee state; the last segment the brentq evaluations
-of the impact (one propagation each; brentq's own arithmetic, about 10 operations per
-iteration, is not counted). For HP with 1 km segments that is about 4,800 operations a segment,
-half of them in ``_phi``.
+MLT (:func:`mlt_flops`) costs every call that MLT's segment loop
+(:data:`harp_analysis.engines.mlt.SEGMENT_LOOP`) makes, times the called function's own count, plus
+the loop's own operations once per segment. The calls are counted while the flight runs (a profile
+hook, like an integrator's count of its evaluations) and the count stops where the loop ends. Per
+segment, with the coefficients at its ``"middle"``, that is: ``segment_coefficients`` twice (at the
+start, and at the middle of the first pass), each with its rotation, wind, gravity, air and
+coefficient table; ``propagate_segment`` three times (the first pass to the end and to the middle
+in ``_solve_segment``, the second pass to the end in the loop), each with two ``_scalar_solution``
+and one ``_epicyclic_solution``, so four ``_phi``; two more ``_rotation`` for the trapezoid mean;
+the impact check ``_altitude``; and, in every segment up to the apogee's, ``_radial_velocity``,
+which propagates to the segment's end once more (the state the second pass just computed). The
+apogee's segment adds the radial velocity at its start, the brentq evaluations and the apogee
+state; the last segment the brentq evaluations of the impact (one propagation each; brentq's own
+arithmetic, about 10 operations per iteration, is not counted). For HP with 1 km segments that is
+about 4,800 operations a segment, half of them in ``_phi``.
 
 Output is not counted for any method: the table's rows (the 3DOF's Hermite samples, the 6DOF's
 dense-output samples, MLT's one propagation per row, all after its segment loop), nor MLT's
@@ -440,7 +439,8 @@ def _mlt_costs(launch) -> dict:
 
 
 def _segment_loop(tree) -> tuple:
-    """The test and body of :func:`harp_analysis.engines.mlt.simulate_mlt`'s loop over segments."""
+    """The test and body of MLT's loop over segments (in
+    :data:`harp_analysis.engines.mlt.SEGMENT_LOOP`)."""
     loop = next(node for node in ast.walk(tree) if isinstance(node, ast.While))
     return loop.test, loop.body
 
@@ -449,9 +449,9 @@ def _mlt_run(launch, **flight) -> tuple[Counter, pd.DataFrame]:
     """One MLT flight and the calls of every Python function that its segment loop made (by
     code object; a profile hook), leaving out the diagnostics and what runs after the loop
     (the output rows)."""
-    simulate = mlt.simulate_mlt.__code__
+    simulate = mlt.SEGMENT_LOOP.__code__
     diagnostics = {function.__code__ for function in mlt.DIAGNOSTICS}  # not counted
-    loop_test, loop_body = _segment_loop(_function_tree(mlt.simulate_mlt))
+    loop_test, loop_body = _segment_loop(_function_tree(mlt.SEGMENT_LOOP))
     first = simulate.co_firstlineno + loop_test.lineno - 1
     last = simulate.co_firstlineno + loop_body[-1].end_lineno - 1
     calls: Counter = Counter()
@@ -483,7 +483,7 @@ def _mlt_count(launch, **flight) -> tuple[int, pd.DataFrame]:
             "MLT's operations are counted in the two-segment atmosphere only (Fig 4.7's; "
             "the 1976 standard's kernels call helpers that the count does not see)"
         )
-    loop = _count(mlt.simulate_mlt, part=_segment_loop)
+    loop = _count(mlt.SEGMENT_LOOP, part=_segment_loop)
     flops = sum(calls[code] * cost for code, cost in _mlt_costs(launch).items())
     return flops + table.attrs["steps"] * loop, table
 

@@ -25,7 +25,7 @@ import numpy as np
 import pandas as pd
 
 from ..foundation import earth
-from ..foundation.validation import check_range, finite_scalar, positive_scalar
+from ..foundation.validation import Bounds, positive_scalar
 from ..models.atmosphere import day_air, get_atmosphere
 from ..models.launch import Launch
 from ..models.trajectory import describe, surface_ranges
@@ -67,9 +67,7 @@ def simulate_appendix_a(launch: Launch, dt_s: float, *, max_time_s: float = 3000
     launch.warn_ignored(
         "Appendix A macro", "cross_wind_m_s", "head_wind_m_s", reason="the macro has no wind"
     )
-    dt = check_range(
-        finite_scalar(dt_s, "dt_s"), "dt_s", low=0.0, low_inclusive=False, high=1.0, unit="s"
-    )
+    dt = Bounds(low=0.0, high=1.0, low_inclusive=False, unit="s").scalar(dt_s, "dt_s")
     max_time_s = positive_scalar(max_time_s, "max_time_s", "s")
     projectile, speed = launch.projectile, launch.speed_m_s
     lat, lon = launch.latitude_rad, math.radians(launch.longitude_deg)

@@ -129,20 +129,7 @@ class Band:
         (deg) and density change; a ValueError naming the field where it is outside the band or
         from another gun, and a warning for its wind (left out: the table's flights had none).
         """
-        theirs = Gun.of(launch)
-        if theirs != gun:
-            different = [
-                name
-                for name in ("projectile", "atmosphere", *_SITE_FIELDS)
-                if getattr(theirs, name) != getattr(gun, name)
-            ]
-            raise ValueError(
-                f"the {engine} was learned for another gun: the launch's "
-                + ", ".join(f"{name} = {_shown(getattr(theirs, name))}" for name in different)
-                + " differ from its "
-                + ", ".join(f"{_shown(getattr(gun, name))}" for name in different)
-                + " (learn a table for this gun)"
-            )
+        _check_gun(Gun.of(launch), gun, engine)
         launch.warn_ignored(
             engine, "cross_wind_m_s", "head_wind_m_s", reason="its flights had no wind"
         )
@@ -170,6 +157,25 @@ class Band:
                 )
         bearing = np.ravel(launch.bearing_deg) % 360.0
         return np.stack(np.broadcast_arrays(elevation, speed, bearing, density), axis=1)
+
+
+def _check_gun(theirs: Gun, gun: Gun, engine: str) -> None:
+    """A ValueError naming the fields where the gun of a launch, ``theirs``, differs from the
+    ``gun`` the ``engine`` was learned for."""
+    if theirs == gun:
+        return
+    different = [
+        name
+        for name in ("projectile", "atmosphere", *_SITE_FIELDS)
+        if getattr(theirs, name) != getattr(gun, name)
+    ]
+    raise ValueError(
+        f"the {engine} was learned for another gun: the launch's "
+        + ", ".join(f"{name} = {_shown(getattr(theirs, name))}" for name in different)
+        + " differ from its "
+        + ", ".join(f"{_shown(getattr(gun, name))}" for name in different)
+        + " (learn a table for this gun)"
+    )
 
 
 def _shown(value) -> str:

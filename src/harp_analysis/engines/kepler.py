@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..foundation import earth
-from ..foundation.validation import check_range, finite_array, finite_scalar
+from ..foundation.validation import Bounds, finite_array
 
 __all__ = [
     "BallisticConic",
@@ -23,6 +23,12 @@ __all__ = [
     "conic_from_state",
     "ConicFromState",
 ]
+
+
+#: A launch's speed and radius (positive) and, rising, its flight-path angle (0, pi/2].
+_SPEED = Bounds(0.0, low_inclusive=False, unit="m/s")
+_RADIUS = Bounds(0.0, low_inclusive=False, unit="m")
+_RISING = Bounds(0.0, np.pi / 2, low_inclusive=False)
 
 
 @dataclass(frozen=True)
@@ -50,21 +56,11 @@ def ballistic_conic(
 ) -> BallisticConic:
     """The Kepler ellipse of a launch at ``speed_m_s`` and ``flight_path_angle_rad`` from
     ``radius_m``; elliptic (sub-escape) launches only, rising (angle in (0, pi/2])."""
-    speed = check_range(
-        finite_array(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0, low_inclusive=False, unit="m/s"
-    )
-    angle = check_range(
-        finite_array(flight_path_angle_rad, "flight_path_angle_rad"),
-        "flight_path_angle_rad",
-        low=0.0,
-        low_inclusive=False,
-        high=np.pi / 2,
-    )
-    radius = check_range(
-        finite_array(radius_m, "radius_m"), "radius_m", low=0.0, low_inclusive=False, unit="m"
-    )
+    speed = _SPEED.finite(speed_m_s, "speed_m_s")
+    angle = _RISING.finite(flight_path_angle_rad, "flight_path_angle_rad")
+    radius = _RADIUS.finite(radius_m, "radius_m")
     energy = 0.5 * speed**2 - gm_m3_s2 / radius
-    check_range(energy, "speed_m_s (specific energy)", high=0.0, high_inclusive=False)
+    Bounds(high=0.0, high_inclusive=False).check(energy, "speed_m_s (specific energy)")
     semi_major = -gm_m3_s2 / (2 * energy)
     momentum = radius * speed * np.cos(angle)
     eccentricity = np.sqrt(1 + 2 * energy * momentum**2 / gm_m3_s2**2)
@@ -96,25 +92,15 @@ def speed_for_range(
     Eq 3.8 with u(0) = u(Theta) = 1/r0 and u'(0) = -tan(phi)/r0 gives GM/h^2 = (1 + tan(phi) /
     tan(Theta/2))/r0 with h = r0 V cos(phi), Theta = range/r0: V^2 = GM / (r0 cos^2(phi)
     (1 + tan(phi)/tan(Theta/2))). Flat limit: V^2 = g range / sin(2 phi)."""
-    radius = check_range(
-        finite_array(radius_m, "radius_m"), "radius_m", low=0.0, low_inclusive=False, unit="m"
-    )
-    range_angle = check_range(
+    radius = _RADIUS.finite(radius_m, "radius_m")
+    range_angle = Bounds(
+        low=0.0, high=np.pi, low_inclusive=False, high_inclusive=False, unit="rad"
+    ).check(
         finite_array(ground_range_m, "ground_range_m") / radius,
         "ground_range_m / radius_m (the range angle)",
-        low=0.0,
-        low_inclusive=False,
-        high=np.pi,
-        high_inclusive=False,
-        unit="rad",
     )
-    angle = check_range(
-        finite_array(flight_path_angle_rad, "flight_path_angle_rad"),
-        "flight_path_angle_rad",
-        low=0.0,
-        low_inclusive=False,
-        high=np.pi / 2,
-        high_inclusive=False,
+    angle = Bounds(0.0, np.pi / 2, low_inclusive=False, high_inclusive=False).finite(
+        flight_path_angle_rad, "flight_path_angle_rad"
     )
     half_range = range_angle / 2
     return np.sqrt(
@@ -132,26 +118,25 @@ class ConicFromState:
     cos_amplitude_per_m: float  # A = 1/r - GM/h^2
     sin_amplitude_per_m: float  # B = u'(0) = -tan(phi)/r, eq 3.28
 
-    def radius(self, delta_theta_rad):
-        """Distance from the Earth's centre (m) at angular range ``delta_theta_rad`` from the
-        state (a conic that escapes or passes through the centre gives inf or a negative)."""
-        theta = finite_array(delta_theta_rad, "delta_theta_rad")
-        u = (
+    def _u(self, theta):
+        """u = 1/r (1/m) at angular range ``theta`` (rad, finite) from the state."""
+        return (
             self.gm_over_h2_per_m
             + self.cos_amplitude_per_m * np.cos(theta)
             + self.sin_amplitude_per_m * np.sin(theta)
         )
+
+    def radius(self, delta_theta_rad):
+        """Distance from the Earth's centre (m) at angular range ``delta_theta_rad`` from the
+        state (a conic that escapes or passes through the centre gives inf or a negative)."""
+        u = self._u(finite_array(delta_theta_rad, "delta_theta_rad"))
         with np.errstate(divide="ignore"):
             return 1 / u
 
     def flight_path_angle(self, delta_theta_rad):
         """Angle (rad) of the velocity above the local horizontal, tan(phi) = -u'/u (eq 3.28)."""
         theta = finite_array(delta_theta_rad, "delta_theta_rad")
-        u = (
-            self.gm_over_h2_per_m
-            + self.cos_amplitude_per_m * np.cos(theta)
-            + self.sin_amplitude_per_m * np.sin(theta)
-        )
+        u = self._u(theta)
         slope = -self.cos_amplitude_per_m * np.sin(theta) + self.sin_amplitude_per_m * np.cos(theta)
         return np.arctan2(-slope, u)
 
@@ -167,20 +152,11 @@ def conic_from_state(
 ) -> ConicFromState:
     """The drag-free conic through a state at ``radius_m`` with ``speed_m_s`` at
     ``flight_path_angle_rad`` above the local horizontal (any sign), h = r V cos(phi)."""
-    radius = check_range(
-        finite_scalar(radius_m, "radius_m"), "radius_m", low=0.0, low_inclusive=False, unit="m"
-    )
-    speed = check_range(
-        finite_scalar(speed_m_s, "speed_m_s"), "speed_m_s", low=0.0, low_inclusive=False
-    )
-    angle = check_range(
-        finite_scalar(flight_path_angle_rad, "flight_path_angle_rad"),
-        "flight_path_angle_rad",
-        low=-np.pi / 2,
-        low_inclusive=False,
-        high=np.pi / 2,
-        high_inclusive=False,
-    )
+    radius = Bounds(low=0.0, low_inclusive=False, unit="m").scalar(radius_m, "radius_m")
+    speed = Bounds(low=0.0, low_inclusive=False).scalar(speed_m_s, "speed_m_s")
+    angle = Bounds(
+        low=-np.pi / 2, high=np.pi / 2, low_inclusive=False, high_inclusive=False
+    ).scalar(flight_path_angle_rad, "flight_path_angle_rad")
     gm_over_h2 = gm_m3_s2 / (radius * speed * np.cos(angle)) ** 2
     return ConicFromState(
         float(gm_over_h2), float(1 / radius - gm_over_h2), float(-np.tan(angle) / radius)

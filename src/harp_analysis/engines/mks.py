@@ -47,7 +47,6 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Sequence
 from functools import cache, cached_property
 
 import numpy as np
@@ -179,7 +178,7 @@ _SPEED, _ELEVATION, _BETA, _TAU, _RADIUS, _DRIVE, _DECAY = (
 
 def _checked(value, name: str):
     """``value`` as a finite float array inside ``name``'s domain, or a ValueError naming it."""
-    return _DOMAINS[name].check(finite_array(value, name), name)
+    return _DOMAINS[name].finite(value, name)
 
 
 def _argument(value, name: str):
@@ -310,20 +309,8 @@ def solve_constants(speed, elevation, beta, tau, radius, drive_scale, decay_scal
         h0 = _at(speed, i) * r * cos_phi  # eq 6.13
         h_inf = h0 * math.exp(-_at(beta, i) * _at(decay_scale, i))  # eq 3.23
         c3 = earth.GM_M3_S2 / (h_inf * h_inf)  # eq 6.8; inf if h_inf underflows
-        # A_n = c3 (-2 beta)^n / (n! (1 + n^2 tau^2)): eqs 6.8-6.10 for n = 0, 1, 2
         ratio = -2 * _at(beta, i) * _at(drive_scale, i)
-        power = factorial = 1.0
-        total = moment = constant = 0.0  # sum_n A_n, sum_n n tau A_n, terms that do not decay
-        for n in range(table.shape[0] - AMPLITUDES_ROW):
-            rate = n * t
-            amplitude = c3 * power / (factorial * (1 + rate * rate))
-            table[AMPLITUDES_ROW + n, i] = amplitude
-            total += amplitude
-            moment += rate * amplitude
-            if rate == 0:
-                constant += amplitude
-            power *= ratio
-            factorial *= n + 1
+        total, moment, constant = _amplitudes(table, i, c3, ratio, t)
         inverse_radius = 1 / r  # u(0)
         c2 = inverse_radius - total
         c1 = -tan_phi * inverse_radius + moment
@@ -336,22 +323,51 @@ def solve_constants(speed, elevation, beta, tau, radius, drive_scale, decay_scal
         ):
             return i
         table[_H0, i], table[_H_INF, i], table[_C1, i], table[_C2, i] = h0, h_inf, c1, c2
-        # sqrt, not hypot (3 ns more): c1 and c2 are far from overflowing once they pass
-        table[_RHO, i] = rho = math.sqrt(c1 * c1 + c2 * c2)
-        # eq 6.4, where the conic is least. atan(c1/c2) would save 5 ns but moves the angle by
-        # an ulp, and the improved MKS's re-entry march of an HP round at 40 deg by 2e-9 of its
-        # loss (from 4e-11 against scipy's DOP853 at rtol 1e-12)
-        table[_APSE, i] = apse = math.atan2(-c1, -c2)
-        table[_ECCENTRICITY, i] = eccentricity = rho / constant
-        escapes[i] = False
-        if eccentricity >= 1.0:  # an open conic: escapes if aloft and climbing once the drive died
-            late = _LATE_DECAY_EXPONENT / t if t > 0 else 0.0
-            u, slope, _ = point(table, i, t, late)
-            escapes[i] = u <= inverse_radius and slope < 0
-        table[_APOGEE_6_4, i] = (
-            math.nan if escapes[i] else 1.0 / u_at(table, i, t, apse) - r
-        )  # eq 6.5
+        _conic(table, i, t, r, constant, escapes)
     return -1
+
+
+@jit(inline=True)
+def _amplitudes(table, i, c3, ratio, tau):
+    """A_n = c3 ratio^n / (n! (1 + n^2 tau^2)) into launch ``i``'s column of ``table``, ratio =
+    -2 beta (eqs 6.8-6.10 for n = 0, 1, 2). Returns sum_n A_n, sum_n n tau A_n and the sum of
+    the terms that do not decay."""
+    power = factorial = 1.0
+    total = moment = constant = 0.0
+    for n in range(table.shape[0] - AMPLITUDES_ROW):
+        rate = n * tau
+        amplitude = c3 * power / (factorial * (1 + rate * rate))
+        table[AMPLITUDES_ROW + n, i] = amplitude
+        total += amplitude
+        moment += rate * amplitude
+        if rate == 0:
+            constant += amplitude
+        power *= ratio
+        factorial *= n + 1
+    return total, moment, constant
+
+
+@jit(inline=True)
+def _conic(table, i, tau, radius, constant, escapes):
+    """From launch ``i``'s c1 and c2 in ``table`` (``constant`` the sum of the terms that do not
+    decay): rho, eq 6.4's apse, the eccentricity of the conic it ends on, whether it escapes
+    on it (into ``escapes``) and eq 6.5's apogee altitude (NaN if it escapes)."""
+    c1, c2 = table[_C1, i], table[_C2, i]
+    # sqrt, not hypot (3 ns more): c1 and c2 are far from overflowing once they pass
+    table[_RHO, i] = rho = math.sqrt(c1 * c1 + c2 * c2)
+    # eq 6.4, where the conic is least. atan(c1/c2) would save 5 ns but moves the angle by
+    # an ulp, and the improved MKS's re-entry march of an HP round at 40 deg by 2e-9 of its
+    # loss (from 4e-11 against scipy's DOP853 at rtol 1e-12)
+    table[_APSE, i] = apse = math.atan2(-c1, -c2)
+    table[_ECCENTRICITY, i] = eccentricity = rho / constant
+    escapes[i] = False
+    if eccentricity >= 1.0:  # an open conic: escapes if aloft and climbing once the drive died
+        late = _LATE_DECAY_EXPONENT / tau if tau > 0 else 0.0
+        u, slope, _ = point(table, i, tau, late)
+        escapes[i] = u <= 1 / radius and slope < 0
+    table[_APOGEE_6_4, i] = (
+        math.nan if escapes[i] else 1.0 / u_at(table, i, tau, apse) - radius
+    )  # eq 6.5
 
 
 @jit
@@ -531,6 +547,41 @@ def _outside_validity(beta, radius, escapes, apogee):
     return escaping, high_drag, beyond, low
 
 
+def _columns(values: list) -> tuple:
+    """The kernels' arguments and the attributes' columns of the launches' ``values``, whether
+    they are one launch, and how many. The kernels take each argument once (a number) or once
+    per launch, shape (1,) or (m,); the attributes are (m, 1). A single launch's are rows of one
+    array."""
+    if np.ndarray in map(type, values):
+        return _array_columns(values)
+    columns = np.array(values, dtype=float).reshape(len(values), 1, 1)  # one launch of numbers
+    return columns[:, 0], columns, True, 1
+
+
+def _count(arguments: tuple, values: list) -> int:
+    """How many launches ``arguments`` (``values`` as arrays of at least one dimension) hold:
+    the length of those not of shape (1,), which must share it and be 1-D."""
+    lengths = {value.shape for value in arguments} - {(1,)}
+    if len(lengths) > 1 or any(len(length) > 1 for length in lengths):
+        raise ValueError(
+            "the launches' arguments must be numbers or 1-D arrays of one length; got "
+            f"shapes {[np.shape(value) for value in values]}"
+        )
+    return lengths.pop()[0] if lengths else 1
+
+
+def _array_columns(values: list) -> tuple:
+    """:func:`_columns` of ``values`` of which some are arrays."""
+    arguments = tuple(np.array(value, dtype=float, ndmin=1) for value in values)
+    count = _count(arguments, values)
+    single = all(np.ndim(value) == 0 for value in values)
+    columns = tuple(
+        (value if value.size == count else np.broadcast_to(value, (count,)))[:, None]
+        for value in arguments
+    )
+    return arguments, columns, single, count
+
+
 class ModifiedKeplerSolution:
     """The MKS of one or many launches (arguments broadcast to shape (m,)).
 
@@ -569,28 +620,7 @@ class ModifiedKeplerSolution:
         values = [_argument(value, name) for name, value in arguments.items()]
         valid = type(n_terms) is int and 1 <= n_terms <= MAX_TERMS  # a batch's fast path
         self.n_terms = n_terms if valid else check_n_terms(n_terms)
-        # The kernels take each argument once (a number) or once per launch, shape (1,) or
-        # (m,); the attributes are (m, 1). A single launch's are rows of one array.
-        self._arguments: Sequence[np.ndarray] | np.ndarray
-        columns: Sequence[np.ndarray] | np.ndarray
-        if np.ndarray in map(type, values):
-            self._arguments = tuple(np.array(value, dtype=float, ndmin=1) for value in values)
-            lengths = {value.shape for value in self._arguments} - {(1,)}
-            if len(lengths) > 1 or any(len(length) > 1 for length in lengths):
-                raise ValueError(
-                    "the launches' arguments must be numbers or 1-D arrays of one length; got "
-                    f"shapes {[np.shape(value) for value in values]}"
-                )
-            self.single = all(np.ndim(value) == 0 for value in values)
-            count = lengths.pop()[0] if lengths else 1
-            columns = tuple(
-                (value if value.size == count else np.broadcast_to(value, (count,)))[:, None]
-                for value in self._arguments
-            )
-        else:  # one launch of plain numbers
-            self.single, count = True, 1
-            columns = np.array(values, dtype=float).reshape(len(values), 1, 1)
-            self._arguments = columns[:, 0]
+        self._arguments, columns, self.single, count = _columns(values)
         (
             self.speed_m_s,
             self.elevation_rad,
@@ -603,45 +633,55 @@ class ModifiedKeplerSolution:
         self._table = np.empty((AMPLITUDES_ROW + self.n_terms, count))
         self.escapes = np.empty(count, dtype=bool)
         if self.single:  # a kernel's call costs more than the apogee's and impact's iterations
-            apogee, impact = np.empty((2, 1)), np.empty(1)
-            reached = _solve_through_impact(
-                *self._arguments, self._table, self.escapes, apogee, impact
-            )
-            failed = 0 if reached == 0 else -1
-            # cached_property's own storage; a failed iteration raises when it is asked for
-            if reached >= 2:
-                self.__dict__["_first_zero_apogee"] = apogee
-                if apogee[0, 0] < 0.0:
-                    raise ValueError(
-                        f"the MKS has no ascent at elevation_rad = "
-                        f"{self.elevation_rad[0, 0]:.6g} "
-                        f"({math.degrees(self.elevation_rad[0, 0]):.6g} deg): beta = "
-                        f"{self.beta[0, 0]:.3g} (eq 3.22) is so large that its solution "
-                        "descends from the muzzle (its apogee lies behind the gun); the text "
-                        "keeps beta below 0.25: raise the elevation or the speed"
-                    )
-            if reached == 3:
-                self.__dict__["impact_angle"] = impact[0]
+            failed = self._solve_single()
         else:
             failed = solve_constants(*self._arguments, self._table, self.escapes)
         if failed >= 0:
-            for name, value in arguments.items():  # an argument outside its domain, named
-                _checked(value, name)
-            elevation = self.elevation_rad[failed, 0]
-            cause = (
-                "h0 = V r0 cos(elevation) (eq 6.13) all but vanishes, so its constants cancel "
-                "to no significant digit; lower the elevation"
-                if elevation > math.pi / 4
-                else f"beta = {self.beta[failed, 0]:.4g} (eq 3.22, which grows as 1/sin of the "
-                "elevation) makes h_inf = h0 exp(-beta) underflow or its constants cancel to no "
-                "significant digit; raise the elevation"
-            )
-            raise ValueError(
-                f"the MKS has no usable closed form at elevation_rad = {elevation:.6g} "
-                f"({math.degrees(elevation):.6g} deg): {cause}"
-            )
+            self._unusable(failed, arguments)
         if warn:
             self._warn_outside_validity()
+
+    def _solve_single(self) -> int:
+        """The constants, apogee and impact of a single launch in one kernel's call; the apogee
+        and impact go to their cached properties (a failed iteration raises when one is asked
+        for). Returns :func:`solve_constants`'s index of a failed launch, or -1."""
+        apogee, impact = np.empty((2, 1)), np.empty(1)
+        reached = _solve_through_impact(*self._arguments, self._table, self.escapes, apogee, impact)
+        failed = 0 if reached == 0 else -1
+        # cached_property's own storage
+        if reached >= 2:
+            self.__dict__["_first_zero_apogee"] = apogee
+            if apogee[0, 0] < 0.0:
+                raise ValueError(
+                    f"the MKS has no ascent at elevation_rad = "
+                    f"{self.elevation_rad[0, 0]:.6g} "
+                    f"({math.degrees(self.elevation_rad[0, 0]):.6g} deg): beta = "
+                    f"{self.beta[0, 0]:.3g} (eq 3.22) is so large that its solution "
+                    "descends from the muzzle (its apogee lies behind the gun); the text "
+                    "keeps beta below 0.25: raise the elevation or the speed"
+                )
+        if reached == 3:
+            self.__dict__["impact_angle"] = impact[0]
+        return failed
+
+    def _unusable(self, failed: int, arguments: dict) -> None:
+        """Raise for launch ``failed``: an argument outside its domain, named, or constants that
+        cannot reproduce its launch conditions."""
+        for name, value in arguments.items():  # an argument outside its domain, named
+            _checked(value, name)
+        elevation = self.elevation_rad[failed, 0]
+        cause = (
+            "h0 = V r0 cos(elevation) (eq 6.13) all but vanishes, so its constants cancel "
+            "to no significant digit; lower the elevation"
+            if elevation > math.pi / 4
+            else f"beta = {self.beta[failed, 0]:.4g} (eq 3.22, which grows as 1/sin of the "
+            "elevation) makes h_inf = h0 exp(-beta) underflow or its constants cancel to no "
+            "significant digit; raise the elevation"
+        )
+        raise ValueError(
+            f"the MKS has no usable closed form at elevation_rad = {elevation:.6g} "
+            f"({math.degrees(elevation):.6g} deg): {cause}"
+        )
 
     # --- the constants, shapes (m, 1) unless said ------------------------------------------
     @property

@@ -69,7 +69,7 @@ from scipy.optimize import brentq
 
 from ..foundation import earth
 from ..foundation.compiled import formula, jit
-from ..foundation.validation import ModelValidityWarning, check_range, finite_array, finite_scalar
+from ..foundation.validation import Bounds, ModelValidityWarning, finite_array
 from ..models import atmosphere, drag
 from ..models.launch import Launch, Launches, baseline_chapter_4
 from ..models.trajectory import launch_frame, rotate_about_axis, surface_ranges
@@ -132,9 +132,7 @@ class Calibration:
     reentry_scale: float = 1.0
 
     def __post_init__(self):
-        value = check_range(
-            finite_scalar(self.reentry_scale, "reentry_scale"), "reentry_scale", low=0.0
-        )
+        value = Bounds(low=0.0).scalar(self.reentry_scale, "reentry_scale")
         object.__setattr__(self, "reentry_scale", value)
 
 
@@ -290,22 +288,9 @@ def _descent_rate(theta, loss, path, tau, h_inf, air):
 
 
 @jit(inline=True)
-def _march(theta, index, loss, start, stop, y, path, tau, h_inf, air, rtol, atol):
-    """dL/dtheta = :func:`_descent_rate` from L = ``y`` at ``start`` to ``stop``: scipy's DOP853
-    for one equation as solve_ivp(method="DOP853", rtol=rtol, atol=atol, t_eval=theta) runs
-    it (its first step, step control, error estimate and dense output), L written into
-    ``loss`` at the points of ``theta`` from ``index`` on that it passes. Returns L at
-    ``stop``, the next index and whether it got there (a rate that is not finite, or a step
-    too small, stops it). The rate is called from four places, each compiled inline: the
-    fewer, the shorter the compilation."""
-    if stop <= start:  # a piece of no length: the descent starts on one of the air's levels
-        return y, index, True
-    a, b, c, e3, e5 = TABLEAU
-    a_extra, c_extra, d = DENSE_TABLEAU
-    k, terms = np.empty(DENSE_STAGES), np.empty(7)
-    t = start
-    f = _descent_rate(t, y, path, tau, h_inf, air)
-    # Hairer, Norsett and Wanner's starting step (scipy's select_initial_step)
+def _first_step(t, y, f, stop, path, tau, h_inf, air, rtol, atol):
+    """Hairer, Norsett and Wanner's starting step from L = ``y``, dL/dtheta = ``f`` at ``t``
+    (scipy's select_initial_step), at most to ``stop``."""
     scale = atol + abs(y) * rtol
     d0, d1 = abs(y) / scale, abs(f) / scale
     h0 = min(1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1, stop - t)
@@ -315,59 +300,118 @@ def _march(theta, index, loss, start, stop, y, path, tau, h_inf, air, rtol, atol
         h1 = max(1e-6, h0 * 1e-3)
     else:
         h1 = (0.01 / max(d1, d2)) ** (1 / 8)  # 1 / (the error estimator's order + 1)
-    h_abs = min(100 * h0, h1, stop - t)
+    return min(100 * h0, h1, stop - t)
+
+
+@jit(inline=True)
+def _stages(k, t, y, h, path, tau, h_inf, air):
+    """The stages of a trial step ``h`` from L = ``y`` at ``t`` (``k[0]`` the rate there),
+    written into ``k``, the last of them the rate at the step's end; returns L there."""
+    a, b, c, _, _ = TABLEAU
+    for stage in range(1, STAGES + 1):  # the last is the solution's, at t + h
+        change = 0.0
+        for j in range(stage):
+            change += (b[j] if stage == STAGES else a[stage, j]) * k[j]
+        node = t + (h if stage == STAGES else c[stage] * h)
+        k[stage] = _descent_rate(node, y + change * h, path, tau, h_inf, air)
+    return y + change * h
+
+
+@jit(inline=True)
+def _error(k, h, y, y_new, rtol, atol):
+    """DOP853's error of a trial step from ``y`` to ``y_new`` with stages ``k``, relative to
+    ``atol + rtol max(|y|, |y_new|)``: at most 1 accepts it."""
+    _, _, _, e3, e5 = TABLEAU
+    scale = atol + max(abs(y), abs(y_new)) * rtol
+    five = three = 0.0
+    for j in range(STAGES + 1):
+        five += e5[j] * k[j]
+        three += e3[j] * k[j]
+    five, three = (five / scale) ** 2, (three / scale) ** 2
+    return 0.0 if five == 0 and three == 0 else h * five / math.sqrt(five + 0.01 * three)
+
+
+@jit(inline=True)
+def _step(k, t, y, f, h_abs, stop, path, tau, h_inf, air, rtol, atol):
+    """One step from L = ``y``, dL/dtheta = ``f`` at ``t``, first tried at ``h_abs`` and
+    shortened until its error is accepted, ``k`` its stages. Returns its end, L and the rate
+    there, the next step's length, and whether it was accepted (not if it had to shrink below
+    ten ulps of ``t``)."""
+    min_step = 10 * (np.nextafter(t, math.inf) - t)
+    h_abs, rejected = max(h_abs, min_step), False
+    while True:
+        t_new = min(t + h_abs, stop)
+        h = t_new - t
+        k[0] = f
+        y_new = _stages(k, t, y, h, path, tau, h_inf, air)
+        error = _error(k, h, y, y_new, rtol, atol)
+        if error < 1:
+            factor = 10.0 if error == 0 else min(10.0, 0.9 * error ** (-1 / 8))
+            h_abs = h * (min(1.0, factor) if rejected else factor)
+            return t_new, y_new, k[STAGES], h_abs, True
+        # as scipy does, a step whose error is not finite (a trial stage that lost every bit
+        # of h) is shortened fivefold
+        shrink = 0.9 * error ** (-1 / 8) if math.isfinite(error) else 0.0
+        h_abs, rejected = h * max(0.2, shrink), True
+        if h_abs < min_step:
+            return t_new, y_new, k[STAGES], h_abs, False
+
+
+@jit(inline=True)
+def _interpolate(theta, index, loss, k, terms, t, t_new, y, y_new, f, f_new, path, tau, h_inf, air):
+    """L on the step from ``t`` to ``t_new`` (stages ``k``) at the points of ``theta`` from
+    ``index`` on that it passed, by its dense output (the extra stages into ``k``, the
+    interpolant's terms into ``terms``), written into ``loss``; returns the next index."""
+    a_extra, c_extra, d = DENSE_TABLEAU
+    h = t_new - t
+    for stage in range(STAGES + 1, DENSE_STAGES):
+        change = 0.0
+        for j in range(stage):
+            change += a_extra[stage - STAGES - 1, j] * k[j]
+        node = t + c_extra[stage - STAGES - 1] * h
+        k[stage] = _descent_rate(node, y + change * h, path, tau, h_inf, air)
+    delta = y_new - y
+    terms[0], terms[1], terms[2] = delta, h * f - delta, 2 * delta - h * (f_new + f)
+    for row in range(4):
+        change = 0.0
+        for j in range(DENSE_STAGES):
+            change += d[row, j] * k[j]
+        terms[3 + row] = h * change
+    while index < theta.size and theta[index] <= t_new:
+        x = (theta[index] - t) / h
+        value = 0.0
+        for i in range(7):
+            value = (value + terms[6 - i]) * (x if i % 2 == 0 else 1 - x)
+        loss[index] = value + y
+        index += 1
+    return index
+
+
+@jit(inline=True)
+def _march(theta, index, loss, start, stop, y, path, tau, h_inf, air, rtol, atol):
+    """dL/dtheta = :func:`_descent_rate` from L = ``y`` at ``start`` to ``stop``: scipy's DOP853
+    for one equation as solve_ivp(method="DOP853", rtol=rtol, atol=atol, t_eval=theta) runs
+    it (:func:`_first_step`, :func:`_step` and :func:`_interpolate`, its dense output), L
+    written into ``loss`` at the points of ``theta`` from ``index`` on that it passes. Returns
+    L at ``stop``, the next index and whether it got there (a rate that is not finite, or a
+    step too small, stops it). The rate is called from four places, each compiled inline
+    (the pieces too, each called once): the fewer, the shorter the compilation."""
+    if stop <= start:  # a piece of no length: the descent starts on one of the air's levels
+        return y, index, True
+    k, terms = np.empty(DENSE_STAGES), np.empty(7)
+    t = start
+    f = _descent_rate(t, y, path, tau, h_inf, air)
+    h_abs = _first_step(t, y, f, stop, path, tau, h_inf, air, rtol, atol)
     while t < stop:
-        min_step = 10 * (np.nextafter(t, math.inf) - t)
-        h_abs, rejected = max(h_abs, min_step), False
-        while True:
-            t_new = min(t + h_abs, stop)
-            h = t_new - t
-            k[0] = f
-            for stage in range(1, STAGES + 1):  # the last is the solution's, at t + h
-                change = 0.0
-                for j in range(stage):
-                    change += (b[j] if stage == STAGES else a[stage, j]) * k[j]
-                node = t + (h if stage == STAGES else c[stage] * h)
-                k[stage] = _descent_rate(node, y + change * h, path, tau, h_inf, air)
-            y_new, f_new = y + change * h, k[STAGES]
-            scale = atol + max(abs(y), abs(y_new)) * rtol
-            five = three = 0.0
-            for j in range(STAGES + 1):
-                five += e5[j] * k[j]
-                three += e3[j] * k[j]
-            five, three = (five / scale) ** 2, (three / scale) ** 2
-            error = 0.0 if five == 0 and three == 0 else h * five / math.sqrt(five + 0.01 * three)
-            if error < 1:
-                factor = 10.0 if error == 0 else min(10.0, 0.9 * error ** (-1 / 8))
-                h_abs = h * (min(1.0, factor) if rejected else factor)
-                break
-            # as scipy does, a step whose error is not finite (a trial stage that lost every
-            # bit of h) is shortened fivefold
-            shrink = 0.9 * error ** (-1 / 8) if math.isfinite(error) else 0.0
-            h_abs, rejected = h * max(0.2, shrink), True
-            if h_abs < min_step:
-                return y, index, False
+        t_new, y_new, f_new, h_abs, accepted = _step(
+            k, t, y, f, h_abs, stop, path, tau, h_inf, air, rtol, atol
+        )
+        if not accepted:
+            return y, index, False
         if index < theta.size and theta[index] <= t_new:  # the interpolant at the points passed
-            for stage in range(STAGES + 1, DENSE_STAGES):
-                change = 0.0
-                for j in range(stage):
-                    change += a_extra[stage - STAGES - 1, j] * k[j]
-                node = t + c_extra[stage - STAGES - 1] * h
-                k[stage] = _descent_rate(node, y + change * h, path, tau, h_inf, air)
-            delta = y_new - y
-            terms[0], terms[1], terms[2] = delta, h * f - delta, 2 * delta - h * (f_new + f)
-            for row in range(4):
-                change = 0.0
-                for j in range(DENSE_STAGES):
-                    change += d[row, j] * k[j]
-                terms[3 + row] = h * change
-            while index < theta.size and theta[index] <= t_new:
-                x = (theta[index] - t) / h
-                value = 0.0
-                for i in range(7):
-                    value = (value + terms[6 - i]) * (x if i % 2 == 0 else 1 - x)
-                loss[index] = value + y
-                index += 1
+            index = _interpolate(
+                theta, index, loss, k, terms, t, t_new, y, y_new, f, f_new, path, tau, h_inf, air
+            )
         t, y, f = t_new, y_new, f_new
     return y, index, True
 

@@ -121,10 +121,9 @@ from ..foundation import earth
 from ..foundation.compiled import formula, jit
 from ..foundation.counting import Counted
 from ..foundation.validation import (
+    Bounds,
     ModelValidityWarning,
     check_choice,
-    check_range,
-    finite_scalar,
     positive_scalar,
 )
 from ..models.atmosphere import get_atmosphere
@@ -162,6 +161,7 @@ __all__ = [
     "simulate_linear_theory_limit",
     "counted_functions",
     "DIAGNOSTICS",
+    "SEGMENT_LOOP",
     "warm_up",
 ]
 
@@ -616,68 +616,25 @@ def counted_functions(launch: Launch) -> tuple[Counted, ...]:
     )
 
 
-def simulate_mlt(
-    launch: Launch,
-    *,
-    density_altitude: str = "flat",
-    segment_length_m: float = SEGMENT_LENGTH_M,
-    coefficients_at: str = "middle",
-    gravity: str = "central",
-    aerodynamics: bool = True,
-    max_time_s: float = 400.0,
-    output_step_s: float = 0.5,
-) -> pd.DataFrame:
-    """One MLT flight (module docstring, eqs L1-L8) from launch to impact, as the 6DOF's table.
+class _Flight(NamedTuple):
+    """What :func:`_march` flew: its segments, whether the last one lands, the apogee's time
+    and state (None if it has none), the first validity problem (None), and the time and
+    state of the last segment's start."""
 
-    ``launch`` and ``density_altitude`` are flown as by
-    :func:`harp_analysis.engines.sixdof.simulate_6dof`. ``segment_length_m`` is the arc length
-    between updates of the linear solution; ``coefficients_at`` where in a segment the coefficients
-    are frozen (:data:`COEFFICIENT_POINTS`); ``gravity`` the central field of the 6DOF (frozen per
-    segment) or ``"uniform"`` (GM/R^2 down the launch vertical); ``aerodynamics=False`` flies
-    in vacuum. Rows every ``output_step_s`` and at impact (spherical altitude back to zero);
-    Mach, drag coefficient, drag/gravity and angle of attack are evaluated from the states by
-    the 6DOF's aerodynamics, so the two tables mean the same thing. ``frame.attrs`` holds the
-    shared metadata (``steps`` = segments, ``rhs_evaluations`` = coefficient evaluations, the
-    6DOF's right-hand side without its derivatives) and MLT's options.
+    segments: list[_Segment]
+    impact: bool
+    apogee: tuple | None
+    problem: str | None
+    time: float
+    state: tuple
 
-    Parameters
-    ----------
-    launch : Launch
-        The launch to fly, as by the 6DOF (HP or LP).
-    density_altitude : str
-        ``"flat"`` or ``"spherical"``, as the 6DOF's.
-    segment_length_m : float
-        Arc length (m) between updates of the linear solution.
-    coefficients_at : str
-        Where in a segment the coefficients are frozen: ``"start"``, ``"middle"`` or
-        ``"average"``.
-    gravity : str
-        ``"central"`` (the 6DOF's field, frozen per segment) or ``"uniform"``.
-    aerodynamics : bool
-        False flies in vacuum.
-    max_time_s : float
-        The longest flight (s).
-    output_step_s : float
-        Seconds between rows.
 
-    Returns
-    -------
-    pandas.DataFrame
-        The trajectory table of :mod:`harp_analysis.models.trajectory`, one row per output
-        time in SI units, with the shared metadata in ``frame.attrs`` (apogee, range, time of
-        flight, why the flight stopped, the work it took).
-    """
-    check_choice(density_altitude, "density_altitude", DENSITY_ALTITUDES)
-    model = rigid_body_launch(launch, "MLT", density_altitude)
-    projectile = launch.projectile
+def _check_segment_length(length_m: float, launch: Launch, max_time: float) -> None:
+    """Raise if segments of ``length_m`` cannot fly ``launch``: one is longer than the whole
+    flight, or it would take more than :data:`MAX_SEGMENTS` of them within ``max_time`` (s);
+    warn beyond :data:`MAX_SEGMENT_LENGTH_M`, where a segment's frozen coefficients no longer
+    stand for it."""
     elevation, speed = launch.elevation_deg, launch.speed_m_s
-    length_m = positive_scalar(segment_length_m, "segment_length_m", "m")
-    check_choice(coefficients_at, "coefficients_at", COEFFICIENT_POINTS)
-    check_choice(gravity, "gravity", GRAVITY_MODELS)
-    max_time = positive_scalar(max_time_s, "max_time_s", "s")
-    step = positive_scalar(output_step_s, "output_step_s", "s")
-    length = length_m / model.d
-    uniform = gravity == "uniform"
     try:  # no flight, with or without drag, travels farther than a drag-free one at V0
         conic = kepler.ballistic_conic(speed, math.radians(elevation))
         longest_m = float(speed * conic.time_of_flight_s)
@@ -694,7 +651,7 @@ def simulate_mlt(
             f"500 m to 2 km; beyond {MAX_SEGMENT_LENGTH_M / 1e3:g} km, density, Mach "
             "and the coefficients change too much within a segment to be frozen",
             ModelValidityWarning,
-            stacklevel=2,
+            stacklevel=3,
         )
 
     needed = min(longest_m, speed * max_time) / length_m
@@ -704,6 +661,16 @@ def simulate_mlt(
             f"flight (at most {MAX_SEGMENTS:,}); MLT updates every 500 m to 2 km"
         )
 
+
+def _march(
+    model, launch: Launch, length_m, coefficients_at, aerodynamics, uniform, max_time
+) -> _Flight:
+    """Segment after segment of ``length_m`` (eq L8's passes, :func:`_solve_segment`) from the
+    launch until the impact or ``max_time`` (s), noting the apogee and the first departure
+    from linear theory's validity. Its loop is the one Fig 4.7 counts
+    (:data:`SEGMENT_LOOP`)."""
+    projectile = launch.projectile
+    length = length_m / model.d
     state = tuple(launch_state(launch).tolist())
     segments: list[_Segment] = []
     time, impact, problem = 0.0, False, None
@@ -769,6 +736,98 @@ def simulate_mlt(
             state, time = end, time + duration
     except ArithmeticError as error:
         raise ValueError(_divergence(launch, time, state, problem)) from error
+    return _Flight(segments, impact, apogee, problem, time, state)
+
+
+#: The function whose loop over segments is MLT's flight, the calls and own operations of which
+#: Fig 4.7 counts (:mod:`harp_analysis.analyses.effort`).
+SEGMENT_LOOP = _march
+
+
+def _rows(model, segments: list[_Segment], step: float, length_m: float, name: str):
+    """The flight's table, a row every ``step`` (s) and at its end, or None if its linear
+    solution left the finite numbers; a RuntimeError if it passes below the ground inside a
+    segment."""
+    end_time = segments[-1].time_s + segments[-1].duration_s(model)
+    if not math.isfinite(end_time):
+        return None
+    times = output_times(end_time, step)
+    frame = trajectory_table(model, times, _states_at(model, segments, times))
+    if not np.isfinite(frame.altitude_m.to_numpy()).all():
+        return None
+    if np.any(frame.altitude_m.to_numpy()[:-1] < -1.0):
+        raise RuntimeError(
+            f"the MLT flight of {name} passes below the ground inside "
+            f"a segment of {length_m:g} m (ends are checked for the impact): "
+            "shorten segment_length_m"
+        )
+    return frame
+
+
+def simulate_mlt(
+    launch: Launch,
+    *,
+    density_altitude: str = "flat",
+    segment_length_m: float = SEGMENT_LENGTH_M,
+    coefficients_at: str = "middle",
+    gravity: str = "central",
+    aerodynamics: bool = True,
+    max_time_s: float = 400.0,
+    output_step_s: float = 0.5,
+) -> pd.DataFrame:
+    """One MLT flight (module docstring, eqs L1-L8) from launch to impact, as the 6DOF's table.
+
+    ``launch`` and ``density_altitude`` are flown as by
+    :func:`harp_analysis.engines.sixdof.simulate_6dof`. ``segment_length_m`` is the arc length
+    between updates of the linear solution; ``coefficients_at`` where in a segment the coefficients
+    are frozen (:data:`COEFFICIENT_POINTS`); ``gravity`` the central field of the 6DOF (frozen per
+    segment) or ``"uniform"`` (GM/R^2 down the launch vertical); ``aerodynamics=False`` flies
+    in vacuum. Rows every ``output_step_s`` and at impact (spherical altitude back to zero);
+    Mach, drag coefficient, drag/gravity and angle of attack are evaluated from the states by
+    the 6DOF's aerodynamics, so the two tables mean the same thing. ``frame.attrs`` holds the
+    shared metadata (``steps`` = segments, ``rhs_evaluations`` = coefficient evaluations, the
+    6DOF's right-hand side without its derivatives) and MLT's options.
+
+    Parameters
+    ----------
+    launch : Launch
+        The launch to fly, as by the 6DOF (HP or LP).
+    density_altitude : str
+        ``"flat"`` or ``"spherical"``, as the 6DOF's.
+    segment_length_m : float
+        Arc length (m) between updates of the linear solution.
+    coefficients_at : str
+        Where in a segment the coefficients are frozen: ``"start"``, ``"middle"`` or
+        ``"average"``.
+    gravity : str
+        ``"central"`` (the 6DOF's field, frozen per segment) or ``"uniform"``.
+    aerodynamics : bool
+        False flies in vacuum.
+    max_time_s : float
+        The longest flight (s).
+    output_step_s : float
+        Seconds between rows.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The trajectory table of :mod:`harp_analysis.models.trajectory`, one row per output
+        time in SI units, with the shared metadata in ``frame.attrs`` (apogee, range, time of
+        flight, why the flight stopped, the work it took).
+    """
+    check_choice(density_altitude, "density_altitude", DENSITY_ALTITUDES)
+    model = rigid_body_launch(launch, "MLT", density_altitude)
+    projectile = launch.projectile
+    length_m = positive_scalar(segment_length_m, "segment_length_m", "m")
+    check_choice(coefficients_at, "coefficients_at", COEFFICIENT_POINTS)
+    check_choice(gravity, "gravity", GRAVITY_MODELS)
+    max_time = positive_scalar(max_time_s, "max_time_s", "s")
+    step = positive_scalar(output_step_s, "output_step_s", "s")
+    _check_segment_length(length_m, launch, max_time)
+    uniform = gravity == "uniform"
+    segments, impact, apogee, problem, time, state = _march(
+        model, launch, length_m, coefficients_at, aerodynamics, uniform, max_time
+    )
     if impact and len(segments) < MIN_SEGMENTS and not problem:
         problem = (
             f"the whole flight is {len(segments)} segments of {length_m:g} m, each frozen at "
@@ -782,19 +841,9 @@ def simulate_mlt(
             stacklevel=2,
         )
 
-    end_time = segments[-1].time_s + segments[-1].duration_s(model)
-    if not math.isfinite(end_time):
+    frame = _rows(model, segments, step, length_m, projectile.name)
+    if frame is None:
         raise ValueError(_divergence(launch, time, state, problem))
-    times = output_times(end_time, step)
-    frame = trajectory_table(model, times, _states_at(model, segments, times))
-    if not np.isfinite(frame.altitude_m.to_numpy()).all():
-        raise ValueError(_divergence(launch, time, state, problem))
-    if np.any(frame.altitude_m.to_numpy()[:-1] < -1.0):
-        raise RuntimeError(
-            f"the MLT flight of {projectile.name} passes below the ground inside "
-            f"a segment of {length_m:g} m (ends are checked for the impact): "
-            "shorten segment_length_m"
-        )
     apogee_values = None
     if apogee is not None:
         apogee_values = (apogee[0], *altitude_and_range(apogee[1]))
@@ -885,7 +934,7 @@ def simulate_linear_theory_limit(
     ``frame.attrs`` the shared metadata, the apogee where the radial velocity changes sign (NaN
     if the flight is cut off before it)."""
     model = rigid_body_launch(launch, "linear-theory limit", density_altitude)
-    rtol = check_range(finite_scalar(rtol, "rtol"), "rtol", low=1e-13, high=1e-3)
+    rtol = Bounds(low=1e-13, high=1e-3).scalar(rtol, "rtol")
     max_time = positive_scalar(max_time_s, "max_time_s", "s")
     step = positive_scalar(output_step_s, "output_step_s", "s")
 

@@ -100,7 +100,7 @@ from scipy.integrate import solve_ivp
 from ..foundation import earth
 from ..foundation.compiled import jit
 from ..foundation.counting import Counted
-from ..foundation.validation import check_range, finite_array, finite_scalar, positive_scalar
+from ..foundation.validation import Bounds, finite_array, positive_scalar
 from ..models.atmosphere import get_atmosphere
 from ..models.launch import HP_CHAPTER_2, Launch
 from ..models.projectiles import Projectile
@@ -346,8 +346,8 @@ def integrate_fixed_step(
     y = finite_array(state0, "state0").copy()
     if y.ndim != 1:
         raise ValueError(f"state0 must be one state vector; got shape {y.shape}")
-    h = float(check_range(finite_scalar(h_s, "h_s"), "h_s", low=0.0, low_inclusive=False, unit="s"))
-    t_end = float(check_range(finite_scalar(t_end_s, "t_end_s"), "t_end_s", low=h, unit="s"))
+    h = float(Bounds(low=0.0, low_inclusive=False, unit="s").scalar(h_s, "h_s"))
+    t_end = float(Bounds(low=h, unit="s").scalar(t_end_s, "t_end_s"))
     n = round(t_end / h)
     if abs(n * h - t_end) > 1e-9 * t_end:
         raise ValueError(f"t_end_s must be a whole number of steps h_s = {h:g} s; got {t_end:g} s")
@@ -422,7 +422,7 @@ def simulate_6dof(
     """
     model = rigid_body_launch(launch, "6DOF", density_altitude)
     projectile = launch.projectile
-    rtol = check_range(finite_scalar(rtol, "rtol"), "rtol", low=1e-13, high=1e-3)
+    rtol = Bounds(low=1e-13, high=1e-3).scalar(rtol, "rtol")
     max_time = positive_scalar(max_time_s, "max_time_s", "s")
     step = positive_scalar(output_step_s, "output_step_s", "s")
 

@@ -43,7 +43,7 @@ import pandas as pd
 from ..foundation import earth
 from ..foundation.compiled import jit, vector
 from ..foundation.counting import Counted
-from ..foundation.validation import check_range, finite_array, finite_scalar, positive_scalar
+from ..foundation.validation import Bounds, finite_array, positive_scalar
 from ..models.atmosphere import SOUND_SQUARED_PER_KELVIN, air, day_air, get_atmosphere
 from ..models.drag import drag_coefficient
 from ..models.launch import BOUNDS, Launch, Launches
@@ -237,6 +237,16 @@ def _integrate(y0, weather, air_code, drag_code, dynamics, numerics, record):
     state (6,) at each (the last state for a flight cut off), how it ended (:data:`_AT_END`,
     :data:`_MAX_TIME` or :data:`_GROUND`), the right-hand-side evaluations and accepted steps,
     and, if ``record``, every accepted step: times (k,) and states with accelerations (9, k).
+
+    One function, one loop: the trial step, its error control, the cuts at breakpoints and
+    drag-table nodes, the events and the record share the loop's state (t, y, a, Mach, the
+    next step, the breakpoint last cut short of, apogee and end) and call the right-hand side
+    (:func:`_derivative`, its model codes folded in as constants) from three places. A piece
+    split off that called it would inline it once more (numba types each inlined copy anew,
+    most of a kernel's compilation) or call it through a dispatcher, passing arrays with their
+    reference counting at every stage, and be compiled per pair of models as well
+    (:mod:`.compiled`). What needs no right-hand side is apart already: :mod:`.integrator`'s
+    building blocks, :func:`_apogee_cut`, :func:`_time_across`, :func:`_crosses`.
     """
     end_m, end_sign, ground_m, breakpoints_m, t_max_s, rtol, floor, max_step_s = numerics
     # a flight that never crosses its end level (above its apogee, or one it cannot rise
@@ -575,9 +585,7 @@ def _numerics(rtol, max_time_s):
     if type(rtol) is float and type(max_time_s) is float:  # the common case, checked cheaply
         if 0.0 < rtol <= 1e-3 and 0.0 < max_time_s < math.inf:
             return rtol, max_time_s
-    rtol = float(
-        check_range(finite_scalar(rtol, "rtol"), "rtol", low=0.0, low_inclusive=False, high=1e-3)
-    )
+    rtol = float(Bounds(low=0.0, high=1e-3, low_inclusive=False).scalar(rtol, "rtol"))
     max_time_s = float(positive_scalar(max_time_s, "max_time_s", "s"))
     return rtol, max_time_s
 
@@ -749,7 +757,7 @@ def _ends(end_altitude_m, rising, count: int) -> tuple[np.ndarray, np.ndarray]:
     one per flight, as flat arrays; else an error naming the argument."""
     ends = finite_array(end_altitude_m, "end_altitude_m")
     # no ground lies below the lowest site
-    check_range(ends, "end_altitude_m", low=BOUNDS["site_altitude_m"].low, unit="m")
+    Bounds(low=BOUNDS["site_altitude_m"].low, unit="m").check(ends, "end_altitude_m")
     directions = np.asarray(rising)
     if directions.dtype != bool:
         raise TypeError(f"rising must be True, False or an array of them; got {rising!r:.80}")

@@ -56,21 +56,27 @@ def _imported_as_of(source: Path, mtime_ns: int, size: int) -> frozenset[Path]:
     found: set[Path] = set()
     for node in ast.walk(ast.parse(source.read_text())):
         if isinstance(node, ast.ImportFrom):
-            module = node.module or ""
-            if node.level:
-                base = source.parent
-                for _ in range(node.level - 1):
-                    base = base.parent
-            elif module == _PACKAGE_NAME or module.startswith(f"{_PACKAGE_NAME}."):
-                base, module = _PACKAGE, module.removeprefix(_PACKAGE_NAME).lstrip(".")
-            else:  # another package's
-                continue
-            found.update(_module_files(base, module, [alias.name for alias in node.names]))
+            found.update(_imported_from(source, node))
         elif isinstance(node, ast.Import):
             for alias in node.names:
                 if alias.name.startswith(f"{_PACKAGE_NAME}."):
                     found.update(_module_files(_PACKAGE, alias.name.partition(".")[2], []))
     return frozenset(found)
+
+
+def _imported_from(source: Path, node: ast.ImportFrom) -> list[Path]:
+    """The package's source files that ``node``, a ``from ... import ...`` of ``source``,
+    imports: none if it imports from another package."""
+    module = node.module or ""
+    if node.level:
+        base = source.parent
+        for _ in range(node.level - 1):
+            base = base.parent
+    elif module == _PACKAGE_NAME or module.startswith(f"{_PACKAGE_NAME}."):
+        base, module = _PACKAGE, module.removeprefix(_PACKAGE_NAME).lstrip(".")
+    else:  # another package's
+        return []
+    return _module_files(base, module, [alias.name for alias in node.names])
 
 
 def _module_files(base: Path, module: str, names: list[str]) -> list[Path]:

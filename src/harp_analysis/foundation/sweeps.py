@@ -194,14 +194,7 @@ def sweep(
     ``function`` comes out of the sweep with a note naming the item's index. More than
     ``max_items`` items raise :class:`SweepLengthError` (before any runs, if ``items`` has a
     length; when the one too many comes, if not)."""
-    if not callable(function):
-        raise TypeError(f"function must be callable; got {type(function).__name__}")
-    if reduce is not None and not callable(reduce):
-        raise TypeError(f"reduce must be callable; got {type(reduce).__name__}")
-    if reduce is None and initial is not None:
-        raise TypeError("initial is the start of reduce's fold; give it with reduce")
-    if not isinstance(items, Iterable):
-        raise TypeError(f"items must be iterable; got {type(items).__name__}")
+    _check_callables(function, items, reduce, initial)
     total = len(items) if isinstance(items, Sized) else None
     max_items = whole_number(max_items, "max_items", low=1)
     if total is not None and total > max_items:
@@ -221,12 +214,30 @@ def sweep(
             window = window or _default_window(client)
             results = _on_cluster(function, items, client, window, advance)
         with closing(results):  # cancels a cluster's remaining tasks if the fold fails
-            if reduce is None:
-                return list(results)
-            state = initial
-            for result in results:
-                state = reduce(state, result)
-            return state
+            return _collected(results, reduce, initial)
+
+
+def _check_callables(function, items, reduce, initial) -> None:
+    """A TypeError unless :func:`sweep`'s ``function`` (and ``reduce``, if given) can be called,
+    ``items`` iterated, and ``initial`` comes with a ``reduce``."""
+    if not callable(function):
+        raise TypeError(f"function must be callable; got {type(function).__name__}")
+    if reduce is not None and not callable(reduce):
+        raise TypeError(f"reduce must be callable; got {type(reduce).__name__}")
+    if reduce is None and initial is not None:
+        raise TypeError("initial is the start of reduce's fold; give it with reduce")
+    if not isinstance(items, Iterable):
+        raise TypeError(f"items must be iterable; got {type(items).__name__}")
+
+
+def _collected(results: Iterable, reduce, initial) -> Any:
+    """The ``results`` as a list, or folded by ``reduce`` from ``initial`` in their order."""
+    if reduce is None:
+        return list(results)
+    state = initial
+    for result in results:
+        state = reduce(state, result)
+    return state
 
 
 def chunks(count: int, size: int) -> list[range]:

@@ -23,7 +23,6 @@ __all__ = [
     "positive_scalar",
     "Bounds",
     "inside",
-    "check_range",
     "check_choice",
 ]
 
@@ -198,21 +197,6 @@ class Bounds:
         )
         unit = f" {self.unit}" if self.unit else ""
         return f"{name} must lie in {interval}{unit}; got {value:g}{unit}"
-
-
-def check_range(
-    array: Checked,
-    name: str,
-    *,
-    low: float = -math.inf,
-    high: float = math.inf,
-    low_inclusive: bool = True,
-    high_inclusive: bool = True,
-    unit: str = "",
-) -> Checked:
-    """:meth:`Bounds.check` of an interval written in place: ``array`` itself, or a
-    ``ValueError`` naming ``name`` if an element is outside."""
-    return Bounds(low, high, low_inclusive, high_inclusive, unit).check(array, name)
 
 
 def check_choice(value: str, name: str, options: Iterable[str]) -> str:

@@ -91,6 +91,20 @@ def _check_atmosphere(atmosphere) -> None:
     check_choice(atmosphere, "atmosphere", ATMOSPHERE_NAMES)
 
 
+def _check_member(position: int, launch, first: Launch) -> None:
+    """A TypeError unless ``launch``, at ``position`` of launches flown together, is a
+    :class:`Launch`; a ValueError unless it shares the projectile and atmosphere of the
+    ``first``."""
+    if not isinstance(launch, Launch):
+        raise TypeError(f"launches[{position}] must be a Launch; got {type(launch).__name__}")
+    for name in ("projectile", "atmosphere"):
+        if getattr(launch, name) != getattr(first, name):
+            raise ValueError(
+                f"launches[{position}].{name} differs from launches[0]'s: launches "
+                "flown together share one projectile and atmosphere"
+            )
+
+
 class _LaunchAir:
     """The air of a launch's day, the same for one launch (numbers) and many (arrays)."""
 
@@ -358,16 +372,7 @@ class Launches(_LaunchAir):
             raise ValueError("launches must hold at least one Launch")
         first = launches[0]
         for position, launch in enumerate(launches):
-            if not isinstance(launch, Launch):
-                raise TypeError(
-                    f"launches[{position}] must be a Launch; got {type(launch).__name__}"
-                )
-            for name in ("projectile", "atmosphere"):
-                if getattr(launch, name) != getattr(first, name):
-                    raise ValueError(
-                        f"launches[{position}].{name} differs from launches[0]'s: launches "
-                        "flown together share one projectile and atmosphere"
-                    )
+            _check_member(position, launch, first)
         columns = np.array([[getattr(one, name) for name in BOUNDS] for one in launches]).T
         return cls._of_valid(first.projectile, first.atmosphere, dict(zip(BOUNDS, columns)))
 

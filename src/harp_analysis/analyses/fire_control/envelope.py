@@ -32,7 +32,7 @@ import pandas as pd
 
 from ...engines import threedof
 from ...foundation.sweeps import sweep
-from ...foundation.validation import check_choice, check_range, finite_array, real_number
+from ...foundation.validation import Bounds, check_choice, finite_array
 from ...models.launch import Launch, Launches
 from ...models.trajectory import EndAltitudeNotCrossedWarning
 from .firing import destination, firing_solutions
@@ -207,9 +207,7 @@ def miss_map(
         )
     root = check_choice(root, "root", (*ROOTS, "both"))
     roots = ROOTS if root == "both" else (root,)
-    bearing_deg = check_range(
-        real_number(bearing_deg, "bearing_deg"), "bearing_deg", low=0.0, high=360.0, unit="deg"
-    )
+    bearing_deg = Bounds(low=0.0, high=360.0, unit="deg").number(bearing_deg, "bearing_deg")
     ranges, altitudes = _check_map(ranges_m, altitudes_m)
     points = [(float(x), float(h)) for h in altitudes for x in ranges]
     # one altitude's points a chunk: each solved by the compiled solver and flown as one batch

@@ -33,7 +33,7 @@ import numpy as np
 
 from ...engines import eci, mks
 from ...foundation import earth
-from ...foundation.validation import check_choice, check_range, finite_array, real_number
+from ...foundation.validation import Bounds, check_choice, finite_array, real_number
 from ...models.launch import Launch
 from ...models.projectiles import HP
 from ...models.sites import BARBADOS
@@ -88,13 +88,12 @@ class TargetPoint:
 
     def __post_init__(self):
         bounds = {
-            "latitude_deg": dict(low=-90.0, high=90.0, unit="deg"),
-            "longitude_deg": dict(low=-180.0, high=360.0, unit="deg"),
-            "altitude_m": dict(low=0.0, unit="m"),
+            "latitude_deg": Bounds(low=-90.0, high=90.0, unit="deg"),
+            "longitude_deg": Bounds(low=-180.0, high=360.0, unit="deg"),
+            "altitude_m": Bounds(low=0.0, unit="m"),
         }
-        for name, limits in bounds.items():
-            value = check_range(real_number(getattr(self, name), name), name, **limits)
-            object.__setattr__(self, name, value)
+        for name, interval in bounds.items():
+            object.__setattr__(self, name, interval.number(getattr(self, name), name))
         if self.arrival_time_s is not None:
             arrival = real_number(self.arrival_time_s, "arrival_time_s")
             if arrival < 0.0:
@@ -272,13 +271,7 @@ def check_bearing_limits(bearing_limits_deg) -> tuple[float, float] | None:
             f"got {bearing_limits_deg!r}"
         )
     first, last = (
-        check_range(
-            real_number(value, "bearing_limits_deg"),
-            "bearing_limits_deg",
-            low=0.0,
-            high=360.0,
-            unit="deg",
-        )
+        Bounds(low=0.0, high=360.0, unit="deg").number(value, "bearing_limits_deg")
         for value in bearing_limits_deg
     )
     return first, last
@@ -655,7 +648,7 @@ def destination(
         The point, fixed to the Earth.
     """
     bearing = math.radians(real_number(bearing_deg, "bearing_deg"))
-    distance = check_range(real_number(downrange_m, "downrange_m"), "downrange_m", low=0.0)
+    distance = Bounds(low=0.0).number(downrange_m, "downrange_m")
     if distance > math.pi * earth.RADIUS_M:
         raise ValueError(
             f"downrange_m = {distance:g} m goes past the antipode "

@@ -20,13 +20,7 @@ import numpy as np
 
 from ...foundation import earth
 from ...foundation.sweeps import client_shares, sweep
-from ...foundation.validation import (
-    check_choice,
-    check_range,
-    finite_array,
-    finite_scalar,
-    real_number,
-)
+from ...foundation.validation import Bounds, check_choice, finite_array, finite_scalar
 from ...models.launch import Launch
 from ...models.trajectory import launch_frame, rotate_about_axis
 from .firing import (
@@ -399,7 +393,7 @@ def raid_windows(
     limits = check_bearing_limits(bearing_limits_deg)
     model = check_choice(model, "model", MODELS)
     if times_s is None:
-        count = int(check_range(real_number(count, "count"), "count", low=1))
+        count = int(Bounds(low=1).number(count, "count"))
     times = [_window_times(target, times_s, count) for target in targets]
     if client is not None:
         solve = partial(_raid_chunk, gun=gun, branch=branch, limits=limits, model=model)
@@ -450,7 +444,7 @@ def raid(gun: Launch = BARBADOS_HP, count: int = 100) -> list[KeplerTarget]:
     list of KeplerTarget
         The targets, by bearing from 60 to 160 deg.
     """
-    count = int(check_range(real_number(count, "count"), "count", low=1))
+    count = int(Bounds(low=1).number(count, "count"))
     targets = []
     for i in range(count):
         fraction = (i + 0.5) / count

@@ -36,7 +36,7 @@ from scipy.optimize import brentq, minimize_scalar
 from ...engines import threedof
 from ...foundation import earth
 from ...foundation.sweeps import client_shares, sweep
-from ...foundation.validation import check_range, real_number
+from ...foundation.validation import Bounds
 from ...models.launch import Launch
 from ...models.trajectory import launch_axes, surface_range
 from . import solver
@@ -563,10 +563,8 @@ def verify_with_3dof(gun, targets, solutions, *, rtol=1e-9, tolerance_m=LANDED_M
     gun = check_gun(gun)
     points, single = check_targets(targets)
     chosen = _check_solutions(solutions, single, len(points))
-    tolerance = check_range(
-        real_number(tolerance_m, "tolerance_m"), "tolerance_m", low=0.0, low_inclusive=False
-    )
-    rtol = check_range(real_number(rtol, "rtol"), "rtol", low=0.0, low_inclusive=False, high=1e-3)
+    tolerance = Bounds(low=0.0, low_inclusive=False).number(tolerance_m, "tolerance_m")
+    rtol = Bounds(low=0.0, high=1e-3, low_inclusive=False).number(rtol, "rtol")
     if client is None:
         results = _refine_3dof(gun, points, chosen, rtol, tolerance)
     else:

@@ -41,7 +41,11 @@ from scipy.optimize import brentq
 
 from ....engines import mks_improved
 from ....foundation import earth
-from ....foundation.validation import ModelValidityWarning, check_choice, check_range, real_number
+from ....foundation.validation import (
+    Bounds,
+    ModelValidityWarning,
+    check_choice,
+)
 from ....models.launch import Launch
 from ....models.sites import YUMA
 from ....models.trajectory import rotate_about_axis
@@ -221,7 +225,7 @@ def improved_solution(
     solution = _check_solution(solution, target)
     if isinstance(iterations, bool) or not isinstance(iterations, int | np.integer):
         raise TypeError(f"iterations must be an integer; got {type(iterations).__name__}")
-    iterations = int(check_range(iterations, "iterations", low=1))
+    iterations = int(Bounds(low=1).check(iterations, "iterations"))
     if not isinstance(calibration, mks_improved.Calibration):
         raise TypeError(f"calibration must be a Calibration; got {type(calibration).__name__}")
     better, _ = _improve(gun, target, solution, iterations, calibration)
@@ -323,10 +327,10 @@ def _check_guns(guns) -> dict[str, Launch]:
     return dict(guns)
 
 
-def _check_values(values, name: str, **limits) -> list[float]:
+def _check_values(values, name: str, interval: Bounds) -> list[float]:
     if isinstance(values, str | bytes) or not isinstance(values, Sequence | np.ndarray):
         raise TypeError(f"{name} must be a sequence of numbers; got {type(values).__name__}")
-    checked = [check_range(real_number(value, name), name, **limits) for value in values]
+    checked = [interval.number(value, name) for value in values]
     if not checked:
         raise ValueError(f"{name} must not be empty")
     return checked
@@ -478,9 +482,9 @@ def compare_first_guesses(
     ``seconds_per_3dof_flight`` (the batches' time over their flights), ``branch`` and
     ``projectiles`` (the guns' projectiles' names)."""
     guns = _check_guns(guns)
-    bearings = _check_values(bearings_deg, "bearings_deg", low=0.0, high=360.0, unit="deg")
-    downranges = _check_values(downranges_m, "downranges_m", low=0.0, low_inclusive=False)
-    altitudes = _check_values(altitudes_m, "altitudes_m", low=0.0, unit="m")
+    bearings = _check_values(bearings_deg, "bearings_deg", Bounds(0.0, 360.0, unit="deg"))
+    downranges = _check_values(downranges_m, "downranges_m", Bounds(low=0.0, low_inclusive=False))
+    altitudes = _check_values(altitudes_m, "altitudes_m", Bounds(low=0.0, unit="m"))
     branch = check_choice(branch, "branch", firing.BRANCHES)
     if not isinstance(calibration, mks_improved.Calibration):
         raise TypeError(f"calibration must be a Calibration; got {type(calibration).__name__}")
@@ -519,7 +523,7 @@ def summary(
         raise ValueError(f"frame lacks the columns {missing} of compare_first_guesses")
     if isinstance(by, str) or not all(name in frame.columns for name in by):
         raise ValueError(f"by must be a sequence of the frame's columns; got {by!r}")
-    cost = check_range(real_number(flight_cost_s, "flight_cost_s"), "flight_cost_s", low=0.0)
+    cost = Bounds(low=0.0).number(flight_cost_s, "flight_cost_s")
     keys = ["site", "bearing_deg", "downrange_m", "altitude_m", "root"]
     found = frame.elevation_deg.notna()
     both = found.groupby([frame[key] for key in keys]).transform("all")

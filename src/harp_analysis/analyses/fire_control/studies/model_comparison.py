@@ -26,7 +26,7 @@ import numpy as np
 import pandas as pd
 
 from ....foundation import earth
-from ....foundation.validation import check_choice, check_range, real_number
+from ....foundation.validation import Bounds, check_choice
 from ....models.launch import Launch
 from ..envelope import three_dof_misses
 from ..firing import (
@@ -91,7 +91,7 @@ def random_aims(
     (:func:`.firing.destination`), and their branches. None is a launch of the calibration's
     grid: their roots fall between its nodes."""
     gun = check_gun(gun)
-    count = int(check_range(real_number(count, "count"), "count", low=1))
+    count = int(Bounds(low=1).number(count, "count"))
     draws = np.random.default_rng(seed)
     bearing = draws.uniform(0.0, 360.0, count)
     downrange = draws.uniform(*DOWNRANGES_M, count)
