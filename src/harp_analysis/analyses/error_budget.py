@@ -139,7 +139,8 @@ OUTPUTS = ("apogee", "impact_downrange", "impact_crossrange", "position_along_tr
 def martlet_at_barbados() -> Launch:
     """A Martlet 2C (Mod 2) round fired from the Barbados gun as Chapter 6 models it: 85 deg on
     109T from 13 deg 4' 38'' N on a turning Earth, the distinct rounds' median mass and muzzle
-    speed, and the drag of :func:`apogees.martlet` (a constant Cd0 A, as the MKS assumes)."""
+    speed, and the drag of :func:`~harp_analysis.analyses.harp.apogees.martlet` (a constant Cd0 A,
+    as the MKS assumes)."""
     rounds = apogees.appendix_rounds("barbados")
     rounds = rounds[~rounds.duplicate_of_earlier_row]
     speed = float(rounds.muzzle_speed_m_s.median())
@@ -642,8 +643,9 @@ def harp_spread_interval_over_model_error(
 ) -> SpreadOverModelError:
     """:func:`harp_spread_over_model_error` with the spread's sampling uncertainty: the
     residuals' standard deviation with its ``confidence`` interval
-    (:func:`confidence.std_interval`, 22 rounds) over the same model error, and how often
-    such an interval holds the truth at a site's rounds (:func:`confidence.coverage`)."""
+    (:func:`~harp_analysis.analyses.harp.confidence.std_interval`, 22 rounds) over the same model
+    error, and how often such an interval holds the truth at a site's rounds
+    (:func:`~harp_analysis.analyses.harp.confidence.coverage`)."""
     spread = harp_confidence.residual_intervals(site, confidence=confidence).loc["std"]
     return SpreadOverModelError(
         site,

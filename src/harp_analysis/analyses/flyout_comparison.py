@@ -22,13 +22,14 @@ reads off the flights and bytes each method needs for an accuracy, by log-log in
 the measured curve (never beyond it), and :func:`size_growth` how many times more flights a
 tenfold accuracy takes.
 
-The guns (:data:`GUNS`): HP from Barbados (:data:`.fire_control.BARBADOS_HP`), its drag table's
-breakpoints and all, and the baseline cone (Chapter 4 B, eq 4.8's smooth drag law, 2157 m/s)
-from Yuma's latitude; both on the turning Earth in eqs 2.1-2.2 air. HP's flights change slope
-where the launch Mach crosses a breakpoint of its table, which the grid's speed nodes follow
-(:meth:`.flight_grid.Grid.speed_breaks`), and also where the Mach the round regains as the air
-cools on its way up (a local maximum below 10.8 km) touches one, a kink along a curve in
-elevation and speed that no tensor grid follows; both tables converge more slowly for HP there.
+The guns (:data:`GUNS`): HP from Barbados
+(:data:`~harp_analysis.analyses.fire_control.firing.BARBADOS_HP`), its drag table's breakpoints and
+all, and the baseline cone (Chapter 4 B, eq 4.8's smooth drag law, 2157 m/s) from Yuma's latitude;
+both on the turning Earth in eqs 2.1-2.2 air. HP's flights change slope where the launch Mach
+crosses a breakpoint of its table, which the grid's speed nodes follow
+(:meth:`.flight_grid.Grid.speed_breaks`), and also where the Mach the round regains as the air cools
+on its way up (a local maximum below 10.8 km) touches one, a kink along a curve in elevation and
+speed that no tensor grid follows; both tables converge more slowly for HP there.
 
 The comparison flies about a hundred thousand 3DOF flights, a few minutes once; it is kept in
 memory and on disk (:func:`harp_analysis.foundation.stored.stored_arrays`, by its inputs and

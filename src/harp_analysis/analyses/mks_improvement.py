@@ -213,7 +213,7 @@ def judge(launches: tuple[Launch, ...] = JUDGING) -> pd.DataFrame:
     """Both variants against the 3DOF on ``launches`` (the judging set by default), one row per
     launch and variant, with the calibration fitted on :data:`TRAINING`; ``beta`` is the
     dissertation's MKS beta of the launch (the text holds its MKS valid to
-    :data:`mks.BETA_VALIDITY_LIMIT`)."""
+    :data:`~harp_analysis.engines.mks.BETA_VALIDITY_LIMIT`)."""
     fitted = calibration()
     return pd.DataFrame(
         [_row(launch, variant, fitted) for launch in launches for variant in mks_improved.VARIANTS]
@@ -284,7 +284,8 @@ def error_map(
     """The baseline cone on the rotating Earth over the grid, one row per point: the impact miss
     and the max position error (m) of the dissertation's MKS and the improved one (NaN where a
     variant cannot fly the launch), and the air's share of the angular momentum
-    (:func:`mks_improved.air_momentum_share`; beyond its limit the improved one warns)."""
+    (:func:`~harp_analysis.engines.mks_improved.air_momentum_share`; beyond its limit the improved
+    one warns)."""
     points = [(b, e, lat) for lat in latitudes_deg for e in elevations_deg for b in bearings_deg]
     rows = sweep(
         partial(_map_point, fitted=calibration()),
@@ -322,8 +323,8 @@ def map_shares(
 ) -> pd.Series:
     """What :func:`error_map` (or :func:`broad_judgement`) says, as shares of its points: where
     the improved MKS has the smaller magnitude of each of ``measures``, over all points, inside
-    its validity band (:data:`mks_improved.AIR_MOMENTUM_SHARE_RANGE`, drawn from the map) and
-    outside it, with the points inside and those where it has no solution."""
+    its validity band (:data:`~harp_analysis.engines.mks_improved.AIR_MOMENTUM_SHARE_RANGE`, drawn
+    from the map) and outside it, with the points inside and those where it has no solution."""
     low, high = mks_improved.AIR_MOMENTUM_SHARE_RANGE
     inside = (error_map.air_momentum_share > low) & (error_map.air_momentum_share <= high)
     shares: dict[str, float] = {"points": len(error_map), "inside": int(inside.sum())}
@@ -393,8 +394,9 @@ def broad_launches(
     """Every projectile x speed x elevation on the still and on the turning Earth, each in the
     standard air and on one day's air told and not told to the MKS. A turning-Earth launch's
     latitude (uniform in -60..60 deg) and bearing (uniform) and each launch's day (density
-    change and temperature change, normal at :data:`error_budget.CHAPTER_7B`'s sds) are drawn
-    from ``seed``, one per projectile x speed x elevation x Earth, in that order."""
+    change and temperature change, normal at
+    :data:`~harp_analysis.analyses.error_budget.CHAPTER_7B`'s sds) are drawn from ``seed``, one per
+    projectile x speed x elevation x Earth, in that order."""
     chosen = broad_projectiles()
     sizes = {u.field: u.sd for u in error_budget.CHAPTER_7B}
     rng = np.random.default_rng(seed)

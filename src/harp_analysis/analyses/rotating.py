@@ -71,11 +71,11 @@ def case(
     atmosphere: str = "two_segment",
 ):
     """(rotating 3DOF table, ECI MKS table, error table) of the baseline cone: the ECI MKS of
-    :data:`eci.CONSISTENT`, or with eq 6.14's printed decay (``decay="printed"``), against the
-    3DOF flown through ``atmosphere`` (eqs 2.1-2.2 by default, or Appendix A's
-    ``"three_layer"``; the launch's air also sets the MKS's Cd0, at the gun's Mach number).
-    The 3DOF's rows are those while both fly; the MKS's (:func:`eci.simulate_eci_mks`) are at
-    the same times, and its impact."""
+    :data:`~harp_analysis.engines.eci.CONSISTENT`, or with eq 6.14's printed decay
+    (``decay="printed"``), against the 3DOF flown through ``atmosphere`` (eqs 2.1-2.2 by default, or
+    Appendix A's ``"three_layer"``; the launch's air also sets the MKS's Cd0, at the gun's Mach
+    number). The 3DOF's rows are those while both fly; the MKS's
+    (:func:`~harp_analysis.engines.eci.simulate_eci_mks`) are at the same times, and its impact."""
     model = replace(eci.CONSISTENT, name=f"consistent, {decay} decay", decay=decay)
     launch = baseline_chapter_4(
         elevation_deg,

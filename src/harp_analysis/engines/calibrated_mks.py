@@ -30,7 +30,7 @@ correction learned across such a kink interpolates poorly, one learned on a smoo
 The 3DOF's flights fly the drag table as it is; the table learns the rest. And where the Earth's
 turn leaves a steep shot against it all but vertical in the inertial frame, the MKS has no
 closed form (its angular momentum so small that eq 3.30's constants cancel): it is flown there
-at the steepest elevation whose constants hold (:func:`_steepest_elevation`), a few thousandths
+at the steepest elevation whose constants hold (``_steepest_elevation()``), a few thousandths
 of a degree off, and the table learns that difference too.
 
 A launch outside the band, or of another gun, is refused by name (:meth:`.flight_grid.Band.check`):

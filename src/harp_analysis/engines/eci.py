@@ -9,17 +9,18 @@ with omega x r0 the eastward surface velocity (eq 6.16) and V_tangent the veloci
 drag component across the inertial velocity (eqs 5.4-5.8). The drag lies along Vrel, at the
 misalignment angle mu from V (Ch. 5 B), so only cos(mu) of it decays the angular momentum
 (eq 5.1) and, referred to the inertial speed, the decay carries (Vrel/V)^2 (eqs 5.2-5.3). These
-enter :class:`mks.ModifiedKeplerSolution` as ``drive_scale`` = cos(mu) (Vrel/V)^2 (eqs 6.9-6.10)
-and ``decay_scale`` = cos(mu) (eq 6.14).
+enter :class:`~harp_analysis.engines.mks.ModifiedKeplerSolution` as ``drive_scale`` = cos(mu)
+(Vrel/V)^2 (eqs 6.9-6.10) and ``decay_scale`` = cos(mu) (eq 6.14).
 
-Vectors are (3, ...) arrays in the inertial frame of :func:`trajectory.launch_frame` at longitude 0
-(z along the Earth's axis); angles in rad, speeds in m/s, SI throughout. The door from a
-:class:`~harp_analysis.models.launch.Launch` or :class:`~harp_analysis.models.launch.Launches`
-is :func:`correction_for_launch`, and from loose arrays (the appendices' rounds)
-:func:`correction_for_arrays`, which checks them; either gives a :class:`LaunchCorrection`,
-whose :meth:`~LaunchCorrection.solution` is the ECI MKS. :func:`simulate_eci_mks` flies it as
-the engines' trajectory table, in the 3DOF's frame on a rotating Earth. :func:`corrected_launch`
-is the compiled formula behind both doors, shared with the fire-control solver's kernels.
+Vectors are (3, ...) arrays in the inertial frame of
+:func:`~harp_analysis.models.trajectory.launch_frame` at longitude 0 (z along the Earth's axis);
+angles in rad, speeds in m/s, SI throughout. The door from a
+:class:`~harp_analysis.models.launch.Launch` or :class:`~harp_analysis.models.launch.Launches` is
+:func:`correction_for_launch`, and from loose arrays (the appendices' rounds)
+:func:`correction_for_arrays`, which checks them; either gives a :class:`LaunchCorrection`, whose
+:meth:`~LaunchCorrection.solution` is the ECI MKS. :func:`simulate_eci_mks` flies it as the engines'
+trajectory table, in the 3DOF's frame on a rotating Earth. :func:`corrected_launch` is the compiled
+formula behind both doors, shared with the fire-control solver's kernels.
 
 Sign of V_tangent (the text leaves it open: "in the plane created by the relative velocity and
 the velocity corrected for Earth rotation and tangent to the corrected velocity"). The drag
@@ -29,7 +30,8 @@ from Vrel: drag drains the air-relative velocity and leaves the projectile movin
 air, turning V further from the gun line (lower and more eastward for an eastward shot), and mu
 grows. Rotating V back toward Vrel would need a force with a component along +Vrel, which drag
 has not. The printed Appendix D/E columns do not include V_tangent at all (see
-:func:`apogees.appendix_columns`, model ``"printed_columns"`` and :data:`PRINTED_COLUMNS`).
+:func:`~harp_analysis.analyses.harp.apogees.appendix_columns`, model ``"printed_columns"`` and
+:data:`PRINTED_COLUMNS`).
 
 The printed equations, checked: eq 5.3 is exact, not an expansion, if Vx is the eastward
 component of the inertial V (omega x r is due east, of size omega r cos LA). Eqs 6.6-6.10 are
@@ -670,9 +672,9 @@ def correction_for_launch(
     :class:`~harp_analysis.models.launch.Launches` sharing one Earth rotation, each launch a
     column), the one door into the ECI MKS from a launch: its speed, elevation, bearing and
     latitude (checked when the launch was made, so not again), Cd0 A at the launch Mach, its
-    mass, its air's density at the gun (:func:`mks.gun_density_kg_m3`) and its Earth rotation.
-    :meth:`LaunchCorrection.solution` is its MKS. The ECI MKS is drag-only: a wind is ignored
-    with a warning; it launches from the Earth's surface (r0 = R).
+    mass, its air's density at the gun (:func:`~harp_analysis.engines.mks.gun_density_kg_m3`) and
+    its Earth rotation. :meth:`LaunchCorrection.solution` is its MKS. The ECI MKS is drag-only: a
+    wind is ignored with a warning; it launches from the Earth's surface (r0 = R).
 
     Parameters
     ----------
@@ -755,7 +757,8 @@ def inertial_positions(
 ) -> np.ndarray:
     """Positions (n, 3) of a single-launch ECI MKS at angular ranges ``theta_rad``: r(theta)
     in the plane of the launch point's radius and the corrected velocity's horizontal part,
-    in the inertial frame of :func:`trajectory.launch_frame` at longitude 0 and time zero."""
+    in the inertial frame of :func:`~harp_analysis.models.trajectory.launch_frame` at longitude 0
+    and time zero."""
     up, along = _flight_plane(launch, latitude_rad)
     theta = np.asarray(theta_rad, dtype=float)
     radius = np.ravel(solution.radius(theta))
@@ -807,10 +810,10 @@ def simulate_eci_mks(
 
     Rows: at ``n_points`` equal steps of angular range and the apogee, each step's time by
     eq 3.32 (3-point Gauss-Legendre between consecutive steps,
-    :meth:`mks.ModifiedKeplerSolution.time`; the apogee's from the step before it), or,
-    given ``times_s`` (s from launch, sorted), at those of them before the impact and at the
-    impact, each placed by linear interpolation of t(theta) on :data:`TIME_GRID_POINTS` equal
-    steps of angular range (the impact's time is that grid's last).
+    :meth:`~harp_analysis.engines.mks.ModifiedKeplerSolution.time`; the apogee's from the step
+    before it), or, given ``times_s`` (s from launch, sorted), at those of them before the impact
+    and at the impact, each placed by linear interpolation of t(theta) on :data:`TIME_GRID_POINTS`
+    equal steps of angular range (the impact's time is that grid's last).
 
     Frame: the 3DOF's on a rotating Earth (:func:`harp_analysis.engines.threedof.simulate_3dof`).
     Positions are inertial and Earth-centred, in the axes the Earth has at launch (x toward
@@ -822,7 +825,7 @@ def simulate_eci_mks(
     the air, which turns with the Earth, over the speed of sound of the launch's air. The drag
     coefficient is the MKS's constant Cd0, and drag/gravity its drag on the air-relative speed
     in eq 3.11's air, rho0 exp(-k a). On a non-rotating Earth the table is
-    :func:`mks.simulate_mks`'s.
+    :func:`~harp_analysis.engines.mks.simulate_mks`'s.
 
     ``surface_density_kg_m3`` replaces rho0 (kg/m^3; :func:`correction_for_launch`): a site's
     measured air. ValueError for a launch whose MKS escapes (no apogee or impact).

@@ -233,8 +233,8 @@ class LearnedSolution:
     launch's longitude included).
 
     An engine's solution sets :attr:`ENGINE` (its label), ``_time_of_flight`` (n,) and gives
-    :meth:`_at_fractions` and :meth:`_velocities` (inertial, at longitude 0) and
-    :meth:`_apogee_guess`, where the search for the apogee starts (or its own :attr:`_apogees`);
+    ``_at_fractions()`` and ``_velocities()`` (inertial, at longitude 0) and
+    ``_apogee_guess()``, where the search for the apogee starts (or its own ``_apogees``);
     ``_learned`` holds its table's values at the launches."""
 
     ENGINE = ""
@@ -295,7 +295,7 @@ class LearnedSolution:
     @cached_property
     def _apogees(self) -> tuple[np.ndarray, np.ndarray]:
         """Apogee altitude (m) and its fraction of the flight: the largest radius on a grid of
-        fractions about :meth:`_apogee_guess`, the grid narrowed about its best point four
+        fractions about ``_apogee_guess()``, the grid narrowed about its best point four
         times (each a quarter of the last), then the parabola through the best three."""
         rows = np.arange(self._time_of_flight.size)
         centre = self._apogee_guess()

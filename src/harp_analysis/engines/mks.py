@@ -157,7 +157,7 @@ def decay_rate_tau(
 
 
 #: Each argument's domain. Plain numbers and float arrays pass the class's door unchecked: the
-#: constants' kernel holds every launch to these domains as it reads it (:func:`_in_domain`, a
+#: constants' kernel holds every launch to these domains as it reads it (``_in_domain()``, a
 #: pass over the arrays saved), and where one lies outside, :func:`_checked` names the argument.
 _DOMAINS: dict[str, Bounds] = {
     "speed_m_s": Bounds(low=0.0, low_inclusive=False, unit="m/s"),
@@ -296,7 +296,7 @@ def solve_constants(speed, elevation, beta, tau, radius, drive_scale, decay_scal
     """The constants of every launch into its column of ``table``, and whether it escapes
     (its apogee is then NaN) into ``escapes``; arguments have one value, or one per launch.
     Returns the index of the first launch whose arguments lie outside their domains
-    (:func:`_in_domain`) or whose constants do not reproduce the launch conditions
+    (``_in_domain()``) or whose constants do not reproduce the launch conditions
     u(0) = 1/r0 and u'(0) = -tan(phi0)/r0 to _LAUNCH_CONDITION_TOLERANCE, or -1."""
     for i in range(escapes.size):
         phi, r, t = _at(elevation, i), _at(radius, i), _at(tau, i)
@@ -475,7 +475,7 @@ _TIME_BREAKS = (1.0, 3.0, 8.0, 20.0)
 @jit
 def time_to(table, i, tau, growth, theta, nodes, weights):
     """Eq 3.32's time of flight (s) of launch ``i`` from launch to the angle ``theta``: one
-    :func:`_interval_time` per interval between the breaks of :data:`_TIME_BREAKS` below it."""
+    ``_interval_time()`` per interval between the breaks of ``_TIME_BREAKS`` below it."""
     total = low = 0.0
     for mark in _TIME_BREAKS:
         high = mark / tau
@@ -489,7 +489,7 @@ def time_to(table, i, tau, growth, theta, nodes, weights):
 @jit
 def _times(table, tau, growth, theta, nodes, weights, out):
     """Time of flight (s) into ``out`` (m, k) to every angle of ``theta`` (rows or 1, k; sorted
-    and non-negative), one :func:`_interval_time` per interval from the angle before (from 0 to
+    and non-negative), one ``_interval_time()`` per interval from the angle before (from 0 to
     the first), for launch i on row i (or the single launch on every row)."""
     for i in range(out.shape[0]):
         launch, row = min(i, table.shape[1] - 1), min(i, theta.shape[0] - 1)
@@ -814,7 +814,7 @@ class ModifiedKeplerSolution:
     @property
     def apogee_angle(self):
         """The first zero of du/dtheta (rad), by Newton iteration from eq 6.4; NaN for a launch
-        that escapes (:attr:`escapes`)."""
+        that escapes (``escapes``)."""
         return self._out(self._first_zero_apogee[0].copy())
 
     def _newton_failed(self, what, index):
@@ -832,7 +832,7 @@ class ModifiedKeplerSolution:
 
     def apogee_altitude(self, method: str = "first_zero"):
         """Apogee height (m): at the first zero of du/dtheta, or at eq 6.4's angle (eq 6.5);
-        NaN for a launch that escapes (:attr:`escapes`).
+        NaN for a launch that escapes (``escapes``).
 
         Parameters
         ----------
@@ -857,7 +857,7 @@ class ModifiedKeplerSolution:
     @cached_property
     def impact_angle(self):
         """Angular range (rad) where the descending solution returns to the launch radius; NaN
-        for a launch that escapes (:attr:`escapes`)."""
+        for a launch that escapes (``escapes``)."""
         angle = np.empty(self._table.shape[1])
         failed = find_impacts(
             self._table,
@@ -956,7 +956,8 @@ def gun_density_kg_m3(launch: Launch | Launches):
     """rho0 of the MKS for ``launch``: its air is eq 3.11's, rho0 exp(-k a) with rho0 =
     1.225 kg/m^3 (Chapter 3 B's fit to the 1976 standard atmosphere), taken at the site's
     altitude, whatever air the simulations fly, with the day's density change; none in a
-    vacuum launch. A float for a :class:`Launch`, an array (n,) for :class:`Launches`."""
+    vacuum launch. A float for a :class:`~harp_analysis.models.launch.Launch`, an array (n,) for
+    :class:`~harp_analysis.models.launch.Launches`."""
     if get_atmosphere(launch.atmosphere).density(0.0) == 0.0:
         return 0.0 if isinstance(launch, Launch) else np.zeros(len(launch))
     if isinstance(launch, Launch):

@@ -652,10 +652,11 @@ def _cumulative_time(theta, integrand_of):
 
 
 class ImprovedSolution:
-    """An MKS of one launch: the closed-form ascent (a :class:`mks.ModifiedKeplerSolution`)
-    with, for the improved variant, the re-entry branch (module docstring). Angles in rad,
-    SI otherwise; positions are inertial (x toward longitude 0 at t = 0, z north) as the 3DOF's
-    table has them, Earth-fixed ones where said."""
+    """An MKS of one launch: the closed-form ascent (a
+    :class:`~harp_analysis.engines.mks.ModifiedKeplerSolution`) with, for the improved variant, the
+    re-entry branch (module docstring). Angles in rad, SI otherwise; positions are inertial (x
+    toward longitude 0 at t = 0, z north) as the 3DOF's table has them, Earth-fixed ones where
+    said."""
 
     def __init__(
         self,
@@ -838,9 +839,10 @@ def _correction(launch: Launch):
 
 
 def dissertation(launch: Launch, *, n_terms: int = 3) -> ImprovedSolution:
-    """The dissertation's MKS of ``launch`` (Chapter 5's ECI MKS, :func:`eci.correction_for_launch`
-    with the consistent decay; on a non-rotating Earth it is :func:`mks.for_launch`) behind the
-    same interface, with no re-entry decay."""
+    """The dissertation's MKS of ``launch`` (Chapter 5's ECI MKS,
+    :func:`~harp_analysis.engines.eci.correction_for_launch` with the consistent decay; on a
+    non-rotating Earth it is :func:`~harp_analysis.engines.mks.for_launch`) behind the same
+    interface, with no re-entry decay."""
     correction = _correction(launch)
     ascent = correction.solution(n_terms=n_terms, warn=False)
     return ImprovedSolution(launch, correction, ascent, variant="dissertation")

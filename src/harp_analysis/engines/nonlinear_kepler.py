@@ -251,8 +251,8 @@ def solve(
 def solve_for_launch(
     launch: Launch, form: str = "eq_3_25", *, n_terms=None, **mks_options
 ) -> NumericalKeplerSolution:
-    """:func:`solve` for ``launch`` (beta, tau from :func:`mks.for_launch`, which
-    ``mks_options`` are passed to)."""
+    """:func:`solve` for ``launch`` (beta, tau from :func:`~harp_analysis.engines.mks.for_launch`,
+    which ``mks_options`` are passed to)."""
     if not isinstance(launch, Launch):
         raise TypeError(f"launch must be a Launch; got {type(launch).__name__}")
     return solve(mks.for_launch(launch, warn=False, **mks_options), form, n_terms=n_terms)

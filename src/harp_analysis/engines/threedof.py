@@ -3,7 +3,8 @@
 Physics as in Appendix A: a spherical Earth of radius 6378 km, inverse-square gravity with
 GM = 398600.4418 km^3/s^2, drag opposite the velocity relative to the air, and optionally the
 Earth's rotation (the air turns with the Earth) and a constant head and cross wind. The
-atmosphere and the drag law are pluggable by name (:mod:`.atmosphere`, :mod:`.drag`).
+atmosphere and the drag law are pluggable by name (:mod:`~harp_analysis.models.atmosphere`,
+:mod:`.drag`).
 
 Not Appendix A's integrator: its fixed-step, second-order position recurrence is replaced by
 the adaptive 8th-order scheme of :mod:`.integrator` with events for apogee and impact, so
@@ -21,8 +22,9 @@ The right-hand side and the stepping loop are compiled (:mod:`.compiled`; :func:
 compiles them ahead of use, once per version of the package), and so are a launch's initial
 state, the summary of its flight and the rows of its table: one call from Python flies a batch,
 so one flight costs little more than its integration, and a batch flies its launches one after
-the other at the speed of one (``make benchmark``). Launches come as a :class:`Launch`, a
-:class:`~harp_analysis.models.launch.Launches` (arrays, validated once) or a sequence of Launch.
+the other at the speed of one (``make benchmark``). Launches come as a
+:class:`~harp_analysis.models.launch.Launch`, a :class:`~harp_analysis.models.launch.Launches`
+(arrays, validated once) or a sequence of Launch.
 """
 
 from __future__ import annotations
@@ -602,9 +604,10 @@ class _Batch(NamedTuple):
 
 
 def _batch(launches) -> _Batch:
-    """A :class:`Launch`, a :class:`Launches` or a sequence of Launch as one batch: one
-    projectile, air, Earth rotation and site altitude (the impact event, a function of the
-    state alone, needs one site)."""
+    """A :class:`~harp_analysis.models.launch.Launch`, a
+    :class:`~harp_analysis.models.launch.Launches` or a sequence of Launch as one batch: one
+    projectile, air, Earth rotation and site altitude (the impact event, a function of the state
+    alone, needs one site)."""
     if isinstance(launches, Launch):  # one launch, validated already: its numbers as they are
         omega, site = launches.rotation_rate_rad_s, launches.site_altitude_m
         columns = np.array([[getattr(launches, name)] for name in _COLUMNS])
@@ -697,10 +700,11 @@ def fly_3dof(
     end_altitude_m=None,
     rising=False,
 ) -> Flights:
-    """The apogee and end of each launch in ``launches`` (one :class:`Launch`, a
-    :class:`Launches`, or a sequence of Launch sharing one projectile, atmosphere, Earth
-    rotation and site altitude), as arrays: the 3DOF's engine without its tables
-    (:func:`simulate_3dof_batch` is this as a DataFrame).
+    """The apogee and end of each launch in ``launches`` (one
+    :class:`~harp_analysis.models.launch.Launch`, a :class:`~harp_analysis.models.launch.Launches`,
+    or a sequence of Launch sharing one projectile, atmosphere, Earth rotation and site altitude),
+    as arrays: the 3DOF's engine without its tables (:func:`simulate_3dof_batch` is this as a
+    DataFrame).
 
     A flight ends where it falls back to the site's altitude, or to ``end_altitude_m`` (m) if
     given, or rises through it if ``rising`` (a target above the gun on the way up); each is
@@ -790,8 +794,9 @@ _FALLING.flags.writeable = False
 class Layings:
     """One gun's 3DOF flights at many layings (elevation and bearing), flown again and again
     as a shooting method iterates: the gun and the integrator's settings are validated once,
-    here, and each :meth:`fly` checks only what it is given (vectorised, no :class:`Launches`
-    built), so a batch of a few flights costs little more than the flights.
+    here, and each :meth:`~harp_analysis.engines.threedof.Layings.fly` checks only what it is given
+    (vectorised, no :class:`~harp_analysis.models.launch.Launches` built), so a batch of a few
+    flights costs little more than the flights.
 
     Parameters
     ----------
@@ -996,12 +1001,12 @@ def simulate_3dof(
 def simulate_3dof_batch(
     launches, *, rtol: float = 1e-9, max_time_s: float = 3000.0
 ) -> pd.DataFrame:
-    """Many 3DOF launches: ``launches`` is a :class:`Launches` or a sequence of :class:`Launch`
-    sharing one projectile, atmosphere, Earth rotation and site altitude (e.g.
-    ``[launch.but(elevation_deg=e) for e in elevations]``). One row per launch: its elevation,
-    speed, bearing and latitude, and the metadata keys of :func:`simulate_3dof` (but
-    ``engine`` and ``launch``, and ``rhs_evaluations``, the batch's total, which are in
-    ``frame.attrs``). Same physics and integrator as :func:`simulate_3dof`.
+    """Many 3DOF launches: ``launches`` is a :class:`~harp_analysis.models.launch.Launches` or a
+    sequence of :class:`~harp_analysis.models.launch.Launch` sharing one projectile, atmosphere,
+    Earth rotation and site altitude (e.g. ``[launch.but(elevation_deg=e) for e in elevations]``).
+    One row per launch: its elevation, speed, bearing and latitude, and the metadata keys of
+    :func:`simulate_3dof` (but ``engine`` and ``launch``, and ``rhs_evaluations``, the batch's
+    total, which are in ``frame.attrs``). Same physics and integrator as :func:`simulate_3dof`.
 
     Parameters
     ----------

@@ -116,7 +116,7 @@ def cache_folder(module_name: str) -> Path:
     """Where the compiled kernels of ``module_name`` are kept: in :func:`cache_root`, in a
     folder named by a digest of the module's name, of the contents of every source file of the
     package that the module reaches, as they are now (an edit to any of them, or a reload after
-    one, compiles afresh), and of :func:`_toolchain` (another numba, llvmlite, Python or CPU
+    one, compiles afresh), and of ``_toolchain()`` (another numba, llvmlite, Python or CPU
     compiles afresh). Where the files are, and when they were written, does not count."""
     sources = tuple(_sources(module_name))
     stamps = tuple(_stamp(source) for source in sources)

@@ -124,9 +124,13 @@ def inside(value, low, high, low_inclusive, high_inclusive):
 @dataclass(frozen=True)
 class Bounds:
     """An interval a number must lie in: the one vocabulary of the package's range checks, on a
-    number (:meth:`number`, :meth:`scalar`), an array (:meth:`array`, :meth:`finite`), a value
-    already converted (:meth:`check`) or, through :attr:`limits` and :func:`inside`, in
-    compiled code."""
+    number (:meth:`~harp_analysis.foundation.validation.Bounds.number`,
+    :meth:`~harp_analysis.foundation.validation.Bounds.scalar`), an array
+    (:meth:`~harp_analysis.foundation.validation.Bounds.array`,
+    :meth:`~harp_analysis.foundation.validation.Bounds.finite`), a value already converted
+    (:meth:`~harp_analysis.foundation.validation.Bounds.check`) or, through
+    :attr:`~harp_analysis.foundation.validation.Bounds.limits` and :func:`inside`, in compiled
+    code."""
 
     low: float = -math.inf
     high: float = math.inf

@@ -168,7 +168,8 @@ def aerodynamics(model, x, y, z, c_theta, s_theta, c_psi, s_psi, u, v, w, p, q, 
 
 class RigidBodyModel:
     """Constants of one projectile in one atmosphere and wind, its M829 table and where it reads
-    the air; :attr:`kernel` is the same model as compiled code takes it."""
+    the air; :attr:`~harp_analysis.models.rigid_body.RigidBodyModel.kernel` is the same model as
+    compiled code takes it."""
 
     def __init__(
         self,

@@ -29,7 +29,7 @@ machine), said in a message while it learns. The table is kept on disk and, in t
 for the last 16 guns (:func:`~harp_analysis.engines.calibrated_mks.calibration_for`): at most
 about 7 MB each where the Earth turns, under 1 MB where it does not, so a page's kernel grows by
 130 MB at most (measured). A launch outside the table's band is refused in the controls' words
-before any table is learned (:func:`_check_calibrated_band`), never extrapolated.
+before any table is learned (``_check_calibrated_band()``), never extrapolated.
 """
 
 from __future__ import annotations
@@ -426,7 +426,7 @@ def _improved_mks(launch: Launch, three: pd.DataFrame) -> Flown:
 def _calibrated_mks(launch: Launch, three: pd.DataFrame) -> Flown:
     """The calibrated MKS (its table, :func:`.calibrated_mks.simulate_calibrated_mks`), with its
     distance from the 3DOF; its gun's table learned on first use (seconds), refused first
-    where it would not hold (:func:`_check_calibrated_band`)."""
+    where it would not hold (``_check_calibrated_band()``)."""
     _check_calibrated_band(launch)
     calibration = calibrated_mks.calibration_for(launch)
     table = calibrated_mks.simulate_calibrated_mks(launch, calibration=calibration)

@@ -379,10 +379,10 @@ def _cut_markers(line, renderer) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _markers_cut(ax, renderer) -> list[str]:
-    """Series whose markers ``ax`` cuts (:func:`_cut_markers`): data points on the axes' limits
+    """Series whose markers ``ax`` cuts (``_cut_markers()``): data points on the axes' limits
     (the axes need margins, or limits that take the markers in), or a curve's marker where it
     leaves the axes (:func:`keep_markers_whole`). A marker wholly outside is not cut but hidden
-    (:func:`_data_outside_limits` says where that is a defect)."""
+    (``_data_outside_limits()`` says where that is a defect)."""
     found = []
     for line in ax.lines:
         marked, cut = _cut_markers(line, renderer)
@@ -398,7 +398,7 @@ def _markers_cut(ax, renderer) -> list[str]:
 def keep_markers_whole(fig, lines=None) -> None:
     """Leave out of each of ``lines`` (curves marked every few points, as laid out in ``fig``;
     default every curve of ``fig`` with markers) the markers its axes would cut
-    (:func:`_cut_markers`): where a curve leaves the axes, or runs along an axis, its line goes
+    (``_cut_markers()``): where a curve leaves the axes, or runs along an axis, its line goes
     to the edge and its markers stop short of it. Call it once the figure is laid out (its
     limits, labels and legends set). Not for a series of markers only, whose every marker is a
     datum (ValueError if given one): its axes need margins."""
@@ -417,11 +417,11 @@ def keep_markers_whole(fig, lines=None) -> None:
 def figure_defects(fig) -> list[str]:
     """What a reader would trip on in ``fig``, as drawn: its width other than
     :data:`FULL_WIDTH_IN`; any text (tick labels, axis labels of one line or more, titles,
-    legends, annotations) off the page (:func:`_texts_off_the_page`); within an axes, two
+    legends, annotations) off the page (``_texts_off_the_page()``); within an axes, two
     labels (texts, annotations, the legend) over one another, or a label over a curve
-    (:func:`label_overlaps`); markers cut by the axes' edge (:func:`_markers_cut`); the labels
-    of different panels over one another (:func:`_decorations_overlapping`); data clipped
-    silently (:func:`_data_outside_limits`). Empty when there is none."""
+    (:func:`label_overlaps`); markers cut by the axes' edge (``_markers_cut()``); the labels
+    of different panels over one another (``_decorations_overlapping()``); data clipped
+    silently (``_data_outside_limits()``). Empty when there is none."""
     found = []
     if abs(fig.get_figwidth() - FULL_WIDTH_IN) > 1e-9:
         found.append(f"the figure is {fig.get_figwidth():g} in wide, not {FULL_WIDTH_IN:g} in")

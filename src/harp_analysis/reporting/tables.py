@@ -39,7 +39,7 @@ def table_4_1(projectiles=("HP", "LP", "baseline")) -> pd.DataFrame:
     """Table 4.1 for ``projectiles``: the drag/weight at launch, the altitude where drag = weight
     (and where drag falls to :data:`DRAG_TO_WEIGHT_THRESHOLDS` of the weight) and the MKS's
     beta, each beside the text's value, and a note naming the ledger rows (``table4.1.*``) whose
-    computed value is not the text's (:func:`_note`)."""
+    computed value is not the text's (``_note()``)."""
     claims = {result.claim.id: result for result in ledger.evaluate_all("table4.1.")}
 
     def text(key: str, name: str) -> float:

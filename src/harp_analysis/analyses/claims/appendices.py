@@ -28,7 +28,7 @@ __all__ = [
 def appendix_column_share_within_rounding(site: str = "barbados", column: str = "mach") -> float:
     """Share of the distinct rounds of Appendix D or E whose printed ``column`` the package
     recomputes (dissertation model) to within half a unit of the last printed digit
-    (:func:`apogees.column_agreement`)."""
+    (:func:`~harp_analysis.analyses.harp.apogees.column_agreement`)."""
     table = apogees.column_agreement(site)
     check_choice(column, "column", tuple(table.index))
     return float(table.rounds_within[column] / table.rounds[column])

@@ -70,7 +70,8 @@ def v3_apogee_bound_km(range_km: float = 43.0, elevation_deg: float = 34.0) -> f
 
 def v3_drag_free_apogee_km(range_km: float = 43.0, elevation_deg: float = 34.0) -> float:
     """Ch. 1 B: apogee (km) of the drag-free conic that reaches ``range_km`` at
-    ``elevation_deg`` (:func:`kepler.speed_for_range`), the estimate without the shell's drag."""
+    ``elevation_deg`` (:func:`~harp_analysis.engines.kepler.speed_for_range`), the estimate without
+    the shell's drag."""
     elevation = math.radians(elevation_deg)
     speed = kepler.speed_for_range(range_km * 1e3, elevation)
     return float(kepler.ballistic_conic(speed, elevation).apogee_altitude_m) / 1e3
@@ -161,7 +162,8 @@ def max_measured_apogee_km(site: str = "yuma") -> float:
 def mlt_over_3dof_orders(segment_length_m: float = 1000.0) -> float:
     """log10 of MLT's operation count over the 3DOF's for HP's reference flight (Fig 4.7's
     counting rule, :mod:`.effort`), MLT updated every ``segment_length_m`` (coefficients at
-    mid-segment, spherical density altitude, as :func:`effort.effort_table`)."""
+    mid-segment, spherical density altitude, as
+    :func:`~harp_analysis.analyses.effort.effort_table`)."""
     length = Bounds(low=0.0, low_inclusive=False).scalar(segment_length_m, "segment_length_m")
     flops = effort.mlt_flops(
         HP_CHAPTER_2,
@@ -174,7 +176,8 @@ def mlt_over_3dof_orders(segment_length_m: float = 1000.0) -> float:
 
 def mks_apogee_miss_share(method: str = "MKS (3 terms)") -> float:
     """|apogee of ``method`` - the 6DOF's| over the 6DOF's apogee, HP at 50 deg (a row of
-    :func:`effort.effort_table`): the accuracy Ch. 1 C's MKS "trades off"."""
+    :func:`~harp_analysis.analyses.effort.effort_table`): the accuracy Ch. 1 C's MKS "trades
+    off"."""
     table = effort.effort_table()
     check_choice(method, "method", tuple(table.index))
     return float(table.apogee_difference_m[method] / table.apogee_m["6DOF"])

@@ -138,7 +138,7 @@ def launch_error_left_below(
     """Smallest error of the MKS against Appendix A's printed rows on the way up below
     ``altitude_km``, over its error at launch (Ch. 4 B, Fig 4.11: the launch error "quickly
     corrects itself"; under 0.1 if it has). The error at launch is the macro's clock, one step
-    ahead of its positions (:func:`rotating.appendix_a_launch_error_m`)."""
+    ahead of its positions (:func:`~harp_analysis.analyses.rotating.appendix_a_launch_error_m`)."""
     rows, errors = rotating.appendix_a_errors(dt_s, elevation_deg)
     climbing = (rows.time_s <= rows.attrs["apogee_time_s"]) & (rows.altitude_m < altitude_km * 1e3)
     error = errors.total_geometric_m.to_numpy()[climbing.to_numpy()[: len(errors)]]

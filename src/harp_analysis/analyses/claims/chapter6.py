@@ -80,8 +80,8 @@ def site_density_kg_m3(
 ) -> float:
     """Sea-level dry-air density (kg/m^3) at ``site`` at standard pressure, at the temperature
     of the speed of sound behind the appendix's Mach column (``source="mach_column"``,
-    :func:`apogees.speed_of_sound`) or at ``temperature_f`` (``"temperature"``; Ch. 6 C gives
-    Barbados 80 F by day and 70 F by night)."""
+    :func:`~harp_analysis.analyses.harp.apogees.speed_of_sound`) or at ``temperature_f``
+    (``"temperature"``; Ch. 6 C gives Barbados 80 F by day and 70 F by night)."""
     check_choice(source, "source", ("mach_column", "temperature"))
     if source == "mach_column":
         temperature = apogees.air_temperature_k(apogees.speed_of_sound(site)[0])

@@ -127,7 +127,8 @@ class SolutionsPerSolve:
 def firing_solutions_per_3dof_solution(**target) -> SolutionsPerSolve:
     """How many MKS firing solutions cost the operations of one 3DOF firing solution, as
     ``log10_solutions`` (:func:`firing_solution`; operations per 3DOF evaluation and per MKS
-    evaluation from :func:`effort.effort_table`'s counts for HP's flight and apogee)."""
+    evaluation from :func:`~harp_analysis.analyses.effort.effort_table`'s counts for HP's flight and
+    apogee)."""
     _, iterations, _ = firing_solution("mks", **target)
     three = firing_solution("3dof", **target)[2]
     return SolutionsPerSolve(
@@ -173,8 +174,9 @@ def pointing_shift_over_mks_error(
 def mks_impact_miss_km(
     projectile: str = "baseline", elevation_deg: float = 85.0, **launch_changes
 ) -> float:
-    """|MKS impact range - 3DOF range| (km) of Chapter 4's launch (:func:`case`): where the
-    MKS puts a ground-fire round against where the simulation lands it."""
+    """|MKS impact range - 3DOF range| (km) of Chapter 4's launch
+    (:func:`~harp_analysis.analyses.comparisons.case`): where the MKS puts a ground-fire round
+    against where the simulation lands it."""
     flight, solution, _ = case(projectile, elevation_deg, **launch_changes)
     return abs(float(solution.impact_angle) * earth.RADIUS_M - flight.attrs["range_m"]) / 1e3
 

@@ -1,5 +1,5 @@
 """The launch the ledger's computations of Chapters 1, 3 and 4 share: Chapter 4's launch
-without wind or spin (:func:`no_wind`)."""
+without wind or spin (:func:`~harp_analysis.analyses.claims.launches.no_wind`)."""
 
 from __future__ import annotations
 

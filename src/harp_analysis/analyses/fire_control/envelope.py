@@ -3,15 +3,16 @@
 For each intercept point of a map (a downrange distance along a bearing from the gun, along
 the great circle, times an altitude above the spherical Earth; the point fixed to the Earth,
 met on the trajectory's descending branch) the ECI MKS firing solution
-(:func:`.fire_control.firing_solutions`) is flown once by the 3DOF on the rotating Earth, to
-the target's altitude, and its miss measured: the straight-line distance (m) from the 3DOF's
-Earth-fixed end point to the target's (:meth:`.fire_control.TargetPoint.earth_fixed_m`). It
-is the first step of :func:`.fire_control.verify_with_3dof` without its shooting refinement,
-which would be far too slow for a map. Each point's ``outcome`` (:data:`OUTCOMES`) says which of
-three it is: the 3DOF's miss measured; no MKS firing solution; or an MKS solution that the 3DOF,
-fired at it, never brings to the target's altitude (its apogee below it: the MKS's trajectory of
-the same launch climbs higher than the 3DOF's), a root the MKS claims and the 3DOF cannot reach.
-The last two keep the reason.
+(:func:`~harp_analysis.analyses.fire_control.firing.firing_solutions`) is flown once by the 3DOF on
+the rotating Earth, to the target's altitude, and its miss measured: the straight-line distance (m)
+from the 3DOF's Earth-fixed end point to the target's
+(:meth:`~harp_analysis.analyses.fire_control.firing.TargetPoint.earth_fixed_m`). It is the first
+step of :func:`~harp_analysis.analyses.fire_control.verification.verify_with_3dof` without its
+shooting refinement, which would be far too slow for a map. Each point's ``outcome``
+(:data:`OUTCOMES`) says which of three it is: the 3DOF's miss measured; no MKS firing solution; or
+an MKS solution that the 3DOF, fired at it, never brings to the target's altitude (its apogee below
+it: the MKS's trajectory of the same launch climbs higher than the 3DOF's), a root the MKS claims
+and the 3DOF cannot reach. The last two keep the reason.
 
 The points run through :func:`.sweeps.sweep`, an altitude's row of them at a time (solved
 together by the compiled solver, the 3DOF flown at them as one batch): in this process, or on

@@ -1,8 +1,10 @@
 """Intercepts of ballistic targets and raids (Chapter 7 A): the firing solutions of
 :mod:`.firing` whose MKS projectile meets a target flying its drag-free Kepler conic at a
-given time, over its flight (:func:`intercept_window`) and for every target of a raid at once
-(:func:`raid_windows`, one call of the compiled solver); :func:`raid` is Chapter 7's count's
-raid.
+given time, over its flight
+(:func:`~harp_analysis.analyses.fire_control.intercepts.intercept_window`) and for every target of a
+raid at once (:func:`~harp_analysis.analyses.fire_control.intercepts.raid_windows`, one call of the
+compiled solver); :func:`~harp_analysis.analyses.fire_control.intercepts.raid` is Chapter 7's
+count's raid.
 
 SI inside (m, s, rad); degrees only in the arguments and fields named ``_deg``.
 """
@@ -352,17 +354,17 @@ def raid_windows(
     model: str = "eci",
     client=None,
 ) -> list[InterceptWindow]:
-    """:func:`intercept_window` of every target of a raid, every intercept of every target
-    solved in one call of the compiled solver: at ``times_s`` (s, the same for every target)
-    or at ``count`` times over each target's flight. Given a Dask ``client``, the targets are
-    shared out in chunks among its workers (:func:`.sweeps.sweep`).
+    """:func:`~harp_analysis.analyses.fire_control.intercepts.intercept_window` of every target of a
+    raid, every intercept of every target solved in one call of the compiled solver: at ``times_s``
+    (s, the same for every target) or at ``count`` times over each target's flight. Given a Dask
+    ``client``, the targets are shared out in chunks among its workers (:func:`.sweeps.sweep`).
 
     Parameters
     ----------
     gun : Launch
         The gun (its elevation and bearing are what is solved).
     targets : sequence of KeplerTarget
-        The raid (:func:`raid`).
+        The raid (:func:`~harp_analysis.analyses.fire_control.intercepts.raid`).
     times_s : array_like, optional
         The intercept times (s), the same for every target; None for ``count`` times over
         each target's flight.
@@ -414,7 +416,8 @@ def raid_roots(windows: Sequence[InterceptWindow]) -> list[tuple[Intercept, Firi
     Parameters
     ----------
     windows : sequence of InterceptWindow
-        The windows of a raid (:func:`raid_windows`).
+        The windows of a raid
+        (:func:`~harp_analysis.analyses.fire_control.intercepts.raid_windows`).
 
     Returns
     -------

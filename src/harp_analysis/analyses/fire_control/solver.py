@@ -21,8 +21,9 @@ Jacobian by forward differences and Broyden's updates after, elevation kept on i
 maximum range. The differences are two of the handful of trajectories a root's Newton takes,
 and the search most of a solve's (``evaluations`` and the counts :func:`solve` returns), so
 analytic derivatives of the closed form would not pay; the Jacobian at the root is returned,
-and the 3DOF's refinement (:func:`.fire_control.verify_with_3dof`) starts from it instead of
-differencing the 3DOF. Every number is SI (m, s, rad); the physics is :mod:`.eci`'s and
+and the 3DOF's refinement
+(:func:`~harp_analysis.analyses.fire_control.verification.verify_with_3dof`) starts from it instead
+of differencing the 3DOF. Every number is SI (m, s, rad); the physics is :mod:`.eci`'s and
 :mod:`.mks`'s (their formulas and kernels, compiled in here), not a copy.
 """
 
@@ -92,7 +93,7 @@ _BEARING_STARTS = 8
 _EDGE_WIDTH_RAD = 1e-8
 _EDGE_ITERATIONS = 30
 
-#: A shot's status (the first return of :func:`_shot`).
+#: A shot's status (the first return of ``_shot()``).
 OK, NOT_USABLE, ESCAPES, BELOW = 0, 1, 2, 3
 #: A root's status in :func:`solve`'s ``status`` (n, 2): found, or why not.
 FOUND = 0
@@ -460,7 +461,7 @@ def _broyden(jacobian, f, trial, step_e, step_b, norm):
 
 @jit
 def _target_row(latitude, longitude, altitude, descending, gun_latitude):
-    """A target as :func:`_shot` reads it: its Earth-fixed unit vector (longitude relative to
+    """A target as ``_shot()`` reads it: its Earth-fixed unit vector (longitude relative to
     the gun's), radius, the great circle's axis at the gun toward it (unit, horizontal), its
     central angle from the gun, its branch (+1 descending, -1 ascending) and its great-circle
     bearing from the gun."""
@@ -760,10 +761,11 @@ def solve(
 ):
     """Both roots of every target (arrays (n,): latitude, longitude relative to the gun's,
     altitude above the sphere, branch), for the gun ``gun`` (speed, latitude, Cd0 A, mass, rho0,
-    k, omega: :func:`.fire_control` builds it) and :class:`.eci.EciModel` ``flags`` with the
-    decay's ("consistent") last. Returns ``roots`` (n, 2, :data:`SOLUTION_FIELDS`; low, high),
-    ``status`` (n, 2), ``search`` (n, :data:`SEARCH_FIELDS`) and the MKS trajectories
-    evaluated per target (n,). The caller validates; this trusts its arrays."""
+    k, omega: :mod:`~harp_analysis.analyses.fire_control` builds it) and :class:`.eci.EciModel`
+    ``flags`` with the decay's ("consistent") last. Returns ``roots`` (n, 2,
+    :data:`SOLUTION_FIELDS`; low, high), ``status`` (n, 2), ``search`` (n, :data:`SEARCH_FIELDS`)
+    and the MKS trajectories evaluated per target (n,). The caller validates; this trusts its
+    arrays."""
     count = latitude_rad.size
     roots = np.empty((count, 2, _FIELDS))
     status = np.zeros((count, 2), dtype=np.int64)

@@ -1,15 +1,15 @@
-"""The 3DOF's check of an MKS firing solution (Chapter 7 A): :func:`verify_with_3dof` flies the
-3DOF (the launch's own atmosphere and drag law, the rotating Earth) at the MKS solution of
-:mod:`.firing`, measures its miss, and refines the solution by shooting with the 3DOF itself,
-every solution flown together in the compiled batch: the MKS's 3DOF miss is the model error the
-text's method accepts.
+"""The 3DOF's check of an MKS firing solution (Chapter 7 A):
+:func:`~harp_analysis.analyses.fire_control.verification.verify_with_3dof` flies the 3DOF (the
+launch's own atmosphere and drag law, the rotating Earth) at the MKS solution of :mod:`.firing`,
+measures its miss, and refines the solution by shooting with the 3DOF itself, every solution flown
+together in the compiled batch: the MKS's 3DOF miss is the model error the text's method accepts.
 
 The refinement is Newton's method on (elevation, bearing), the MKS's Jacobian at its root
 updated by Broyden's rule, which lands most roots in a few flights. It stalls where the miss is
 far from linear: near the grazing elevation, where the 3DOF's apogee just reaches the target's
 altitude and the crossing moves as the square root of the elevation above it (below it there is
 no crossing at all), and near the descending branch's maximum range, where its two roots merge.
-There the 3DOF's branch is searched, root by root (:func:`_search`): at a bearing, the grazing
+There the 3DOF's branch is searched, root by root (``_search()``): at a bearing, the grazing
 elevation is solved on the apogee, on the descending branch the maximum range found, and the
 crossing's distance from the gun solved onto the target's by Brent's method in the square root
 of the elevation above the foot of the part of the branch where it is monotone; then the

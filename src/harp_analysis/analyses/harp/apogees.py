@@ -141,9 +141,9 @@ def round_corrections(
     model: str | eci.EciModel = "dissertation",
     surface_density_kg_m3=None,
 ) -> eci.LaunchCorrection:
-    """The ECI corrections (:func:`eci.correction_for_launch`, under ``model``) of Martlet
-    rounds fired from ``site``'s gun (:func:`gun_launch`) at ``speed_m_s`` (m/s), each of
-    ``mass_kg`` with Cd0 A ``drag_area_m2`` (m^2), in the site's air or at
+    """The ECI corrections (:func:`~harp_analysis.engines.eci.correction_for_launch`, under
+    ``model``) of Martlet rounds fired from ``site``'s gun (:func:`gun_launch`) at ``speed_m_s``
+    (m/s), each of ``mass_kg`` with Cd0 A ``drag_area_m2`` (m^2), in the site's air or at
     ``surface_density_kg_m3``: numbers or 1-D arrays, one per round, broadcasting together."""
     site = get_site(site)
     if surface_density_kg_m3 is None:
@@ -221,9 +221,10 @@ def _appendix_rounds(site: LaunchSite) -> pd.DataFrame:
 
 
 def appendix_rounds(site: str | LaunchSite) -> pd.DataFrame:
-    """The appendix of ``site`` as printed (every row, :func:`appendices.load_appendix`), with
-    ``muzzle_speed_m_s`` the recovered exact speed and ``printed_muzzle_speed_m_s`` the printed
-    one. A copy: editing it changes nothing else."""
+    """The appendix of ``site`` as printed (every row,
+    :func:`~harp_analysis.analyses.harp.appendices.load_appendix`), with ``muzzle_speed_m_s`` the
+    recovered exact speed and ``printed_muzzle_speed_m_s`` the printed one. A copy: editing it
+    changes nothing else."""
     return _appendix_rounds(get_site(site))
 
 
@@ -431,9 +432,9 @@ def predicted_apogees(
 ) -> pd.DataFrame:
     """Measured and predicted apogee (eqs 6.4-6.5) of every printed row of ``site``'s appendix
     (the duplicated Barbados round 181 kept and flagged), residual = measured - predicted, and
-    for Yuma the printed Error. ``model`` names one of :data:`eci.MODELS` or is an
-    :class:`eci.EciModel`; ``drag_area`` (Cd0 A, m^2) defaults to a named model's own
-    (:func:`drag_area_m2`). A copy.
+    for Yuma the printed Error. ``model`` names one of :data:`~harp_analysis.engines.eci.MODELS` or
+    is an :class:`~harp_analysis.engines.eci.EciModel`; ``drag_area`` (Cd0 A, m^2) defaults to a
+    named model's own (:func:`drag_area_m2`). A copy.
 
     Parameters
     ----------
@@ -441,7 +442,7 @@ def predicted_apogees(
         "barbados" (Appendix D) or "yuma" (Appendix E), or the site.
     model : str or EciModel
         The model of the launch corrections: "dissertation", "consistent" or
-        "printed_columns" (:data:`eci.MODELS`), or one of your own.
+        "printed_columns" (:data:`~harp_analysis.engines.eci.MODELS`), or one of your own.
     drag_area : float, optional
         Cd0 A (m^2); None for the model's own.
 

@@ -407,8 +407,8 @@ def load_muzzle_speeds(
 ) -> pd.DataFrame:
     """The exact muzzle speeds of ``site``'s rounds recovered from the appendix's columns
     (derived data, ``data/harp/muzzle_speeds.tsv``; method in
-    :func:`apogees.recover_muzzle_speeds`): ``round_number``, ``speed_ft_s`` and
-    ``muzzle_speed_m_s`` (x 0.3048), one row per round.
+    :func:`~harp_analysis.analyses.harp.apogees.recover_muzzle_speeds`): ``round_number``,
+    ``speed_ft_s`` and ``muzzle_speed_m_s`` (x 0.3048), one row per round.
 
     Checks as :func:`load_appendix` (``path``, ``verify``, :data:`PLAUSIBLE_RANGES`); besides, the
     ``site`` field must be a site's lower-case name, a round may appear once per site, and the

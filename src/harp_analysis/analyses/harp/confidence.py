@@ -23,12 +23,14 @@ Surface density. :mod:`.apogees` flies each site at ``sites.LaunchSite.surface_d
 Barbados at the 1976 standard's 1.225 kg/m^3 (Ch. 6 C), Yuma at the text's 1.14 kg/m^3
 (Ch. 6 D, an evening average of the NCDC record, not given). No per-round density (or
 temperature, pressure, humidity) exists anywhere in the dissertation. Each appendix's Mach
-column gives one speed of sound per site (:func:`apogees.speed_of_sound`), hence one air
-temperature (:func:`apogees.air_temperature_k`): Yuma about 10 K colder. ``densities="site"`` keeps
-the text's two values; ``densities="temperature"`` keeps the anchor site's value and gives the
-other site the density of the same surface pressure at its own temperature (rho ~ 1/T). rho0 and
-Cd0 A enter the ECI MKS only as their product (eqs 5.8, 6.11), so a fitted Cd0 A absorbs the
-anchor's value and a transfer depends only on the ratio of the two densities.
+column gives one speed of sound per site
+(:func:`~harp_analysis.analyses.harp.apogees.speed_of_sound`), hence one air temperature
+(:func:`~harp_analysis.analyses.harp.apogees.air_temperature_k`): Yuma about 10 K colder.
+``densities="site"`` keeps the text's two values; ``densities="temperature"`` keeps the anchor
+site's value and gives the other site the density of the same surface pressure at its own
+temperature (rho ~ 1/T). rho0 and Cd0 A enter the ECI MKS only as their product (eqs 5.8, 6.11), so
+a fitted Cd0 A absorbs the anchor's value and a transfer depends only on the ratio of the two
+densities.
 """
 
 from __future__ import annotations
@@ -725,7 +727,8 @@ def drag_area_fit_table(
     """Cd0 A (m^2) fitted to each site alone, to both, and to both with a per-site offset: the
     estimate, its linearised standard uncertainty, its bootstrap interval, the residual sd, the
     fitted offsets (NaN where none is fitted) and its ratio to the Cd0 A ``model`` predicts
-    with (:func:`apogees.drag_area_m2`; the dissertation's is the one Appendix E's errors fix)."""
+    with (:func:`~harp_analysis.analyses.harp.apogees.drag_area_m2`; the dissertation's is the one
+    Appendix E's errors fix)."""
     cases = {
         "barbados": (("barbados",), False),
         "yuma": (("yuma",), False),

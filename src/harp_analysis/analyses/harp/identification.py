@@ -2,7 +2,8 @@
 choices Chapters 5-6 leave open, each fitted to Appendix E's Error column as the dissertation
 model is, with its fit, Barbados' mean residual and round 181's range.
 
-The open choices (:class:`eci.EciModel`'s fields, each with the readings the text allows):
+The open choices (:class:`~harp_analysis.engines.eci.EciModel`'s fields, each with the readings the
+text allows):
 
 - ``tangent_sine``: the elevation whose sine eq 5.8's straight climb (eq 5.7) uses: ``"gun"``
   (phi_rel, the elevation of Vrel, as printed) or ``"corrected"`` (that of Vrel + omega x r0,
@@ -12,11 +13,12 @@ The open choices (:class:`eci.EciModel`'s fields, each with the readings the tex
 - ``speed_ratio``: the V of eq 5.3's (Vrel/V)^2: ``"corrected"`` (Vrel + omega x r0, Figs 5.1-5.2)
   or ``"launch"`` (eq 6.15's V against its air-relative part).
 
-Everything else stays the dissertation model's (:data:`eci.DISSERTATION`): V_tangent included,
-beta of eq 6.11 at the gun's 85 deg (Appendix E's Beta column holds it: every Yuma Beta within
-print rounding, ``tests/test_harp.py``), the consistent decay. Each combination's Cd0 A is
-:func:`apogees.fit_drag_area_to_errors` of its own model, the least-squares fit that fixes the
-dissertation model's, and is used unchanged at Barbados, as the text says.
+Everything else stays the dissertation model's (:data:`~harp_analysis.engines.eci.DISSERTATION`):
+V_tangent included, beta of eq 6.11 at the gun's 85 deg (Appendix E's Beta column holds it: every
+Yuma Beta within print rounding, ``tests/test_harp.py``), the consistent decay. Each combination's
+Cd0 A is :func:`~harp_analysis.analyses.harp.apogees.fit_drag_area_to_errors` of its own model, the
+least-squares fit that fixes the dissertation model's, and is used unchanged at Barbados, as the
+text says.
 
 Noise. Appendix E prints Error in km to two decimals: 10 m steps
 (:data:`ERROR_COLUMN_RESOLUTION_M`), so a model that computed every round exactly as the
@@ -150,8 +152,8 @@ def identification_table(
     largest misfit to that column (km), whether it fits within the noise of an Error column
     printed to ``resolution_m`` (:func:`noise_threshold_km`), and with that Cd0 A Barbados'
     mean and sample standard deviation of the residual over the 23 printed rows (km, as
-    Ch. 6 C counts them) and round 181's splash range (km, :func:`rounds.splash_range_km`).
-    A copy."""
+    Ch. 6 C counts them) and round 181's splash range (km,
+    :func:`~harp_analysis.analyses.harp.rounds.splash_range_km`). A copy."""
     table = _fits()
     threshold = noise_threshold_km(significance=significance, resolution_m=resolution_m)
     table.insert(

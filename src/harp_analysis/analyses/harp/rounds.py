@@ -3,13 +3,13 @@ round as an observer on the rotating Earth sees it, the slot for its radar track
 
 Trajectory. The round flies :func:`harp_analysis.engines.eci.simulate_eci_mks` from its appendix row
 (mass, muzzle speed) and its site (latitude, gun bearing, 85 deg, surface density) with the
-Martlet's Cd0 A of :func:`apogees.drag_area_m2` and the model of
-:func:`apogees.predicted_apogees` (by default V_tangent included, ``decay="consistent"``), so its
-peak is that apogee. The MKS angular range theta is inertial: it lies in the plane of the launch
-"up" and the corrected inertial azimuth (~95 deg at Barbados for the 109 deg gun). The inertial
-position r(theta) (cos theta up + sin theta d_azimuth) at time t(theta) is turned into the
-Earth-fixed frame by a rotation of -omega t about the polar axis, and its ranges are measured from
-the launch site on the Earth's surface.
+Martlet's Cd0 A of :func:`~harp_analysis.analyses.harp.apogees.drag_area_m2` and the model of
+:func:`~harp_analysis.analyses.harp.apogees.predicted_apogees` (by default V_tangent included,
+``decay="consistent"``), so its peak is that apogee. The MKS angular range theta is inertial: it
+lies in the plane of the launch "up" and the corrected inertial azimuth (~95 deg at Barbados for the
+109 deg gun). The inertial position r(theta) (cos theta up + sin theta d_azimuth) at time t(theta)
+is turned into the Earth-fixed frame by a rotation of -omega t about the polar axis, and its ranges
+are measured from the launch site on the Earth's surface.
 
 Range "as measured by the radar". Ch. 6 E: "the range displayed is the relative range between
 the original launch location and the current position of the projectile as is measured by the
@@ -71,8 +71,9 @@ _KM = 1e3
 
 
 def round_row(site: str | LaunchSite, round_number: int):
-    """The site, the round's number and its row of the appendix (:func:`apogees.appendix_rounds`);
-    a ValueError naming the round if the site's table has no such round."""
+    """The site, the round's number and its row of the appendix
+    (:func:`~harp_analysis.analyses.harp.apogees.appendix_rounds`); a ValueError naming the round if
+    the site's table has no such round."""
     launch_site = get_site(site)
     number = whole_number(round_number, "round_number", low=1)
     table = apogees.appendix_rounds(launch_site)
@@ -91,14 +92,14 @@ def round_trajectory(
     drag_area_m2: float | None = None,
 ) -> pd.DataFrame:
     """The ECI MKS of ``round_number`` fired from ``site`` (its table,
-    :func:`eci.simulate_eci_mks`, in the site's air), launch to impact at ``n_points`` equal
-    steps of angular range and the apogee: ``time_s``, ``altitude_m``, ``inertial_range_m``
-    (R theta), and on the rotating Earth ``ground_range_m`` (surface arc from the gun),
-    ``downrange_m`` and ``cross_range_m`` (along and right of the gun bearing) and
+    :func:`~harp_analysis.engines.eci.simulate_eci_mks`, in the site's air), launch to impact at
+    ``n_points`` equal steps of angular range and the apogee: ``time_s``, ``altitude_m``,
+    ``inertial_range_m`` (R theta), and on the rotating Earth ``ground_range_m`` (surface arc from
+    the gun), ``downrange_m`` and ``cross_range_m`` (along and right of the gun bearing) and
     ``radar_range_m`` (= the ground range; module docstring). ``model`` and its Cd0 A (or
-    ``drag_area_m2``) as in :func:`apogees.predicted_apogees`, whose default it shares; the
-    round flies its recovered exact muzzle speed. ValueError for a round not in the site's
-    appendix."""
+    ``drag_area_m2``) as in :func:`~harp_analysis.analyses.harp.apogees.predicted_apogees`, whose
+    default it shares; the round flies its recovered exact muzzle speed. ValueError for a round not
+    in the site's appendix."""
     launch_site, _, row = round_row(site, round_number)
     name = eci.get_model(model).name
     area = apogees.drag_area_m2(model) if drag_area_m2 is None else drag_area_m2

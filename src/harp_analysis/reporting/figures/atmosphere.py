@@ -73,8 +73,9 @@ def draw_density_models(top_altitude_km: float = 100.0) -> Figure:
 
 def draw_exponential_model(top_altitude_km: float = 100.0) -> Figure:
     """Fig 3.2: eq 3.11's exponential density with the text's decay constant and with the
-    least-squares optimum of the literal reading (:func:`atm.literal_fit`) against the 1976
-    standard up to ``top_altitude_km``."""
+    least-squares optimum of the literal reading
+    (:func:`~harp_analysis.models.atmosphere.literal_fit`) against the 1976 standard up to
+    ``top_altitude_km``."""
     altitude_m = _altitudes_m(top_altitude_km)
     fit = atm.literal_fit()
     text_k_per_km = atm.TEXT_DECAY_CONSTANT_PER_M * 1e3

@@ -1,4 +1,4 @@
-"""The figures of notebook 08 (X.3-X.7): reporting on :mod:`.error_budget`,
+"""The figures of notebook 08 (X.3-X.7): reporting on :mod:`~harp_analysis.analyses.error_budget`,
 :mod:`.confidence` and :mod:`.mks_improvement`. Each function draws from the tables the
 analyses return and returns the figure; the notebook saves it."""
 
@@ -47,9 +47,10 @@ _NEUTRAL = "#4D4D4D"  # a projectile that is neither an engine nor a measurement
 
 
 def launch_style(name: str) -> dict:
-    """Marker keywords of a representative launch (:func:`error_budget.representative_launches`):
-    the baseline cone in the house's elevation shades and markers, HP with its open circle,
-    the Martlet with a star, both in dark grey."""
+    """Marker keywords of a representative launch
+    (:func:`~harp_analysis.analyses.error_budget.representative_launches`): the baseline cone in the
+    house's elevation shades and markers, HP with its open circle, the Martlet with a star, both in
+    dark grey."""
     if name.startswith("baseline"):
         elevation = float(name.split(",")[1].split()[0])
         look = elevation_style(elevation, _BASELINE_ELEVATIONS)

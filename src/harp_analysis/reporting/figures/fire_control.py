@@ -27,8 +27,8 @@ MISS_CLASSES = (
     (1e5, np.inf, "100 km or more", "D", OKABE_ITO["black"]),
 )
 #: A root the MKS claims and the 3DOF fired at it never brings to the target's altitude
-#: (:data:`envelope.NEVER_THERE`): worse than any miss, black as the largest; its marker and
-#: size (a star reads small at the others' size).
+#: (:data:`~harp_analysis.analyses.fire_control.envelope.NEVER_THERE`): worse than any miss, black
+#: as the largest; its marker and size (a star reads small at the others' size).
 NEVER_THERE_LOOK = ("*", OKABE_ITO["black"], 8.0)
 _SIZE = 5.5
 #: The firing elevation's contours (deg) drawn over each map.
@@ -81,12 +81,14 @@ def _marks(ax, x, y, chosen, valid, marker: str, shade: str, size: float = _SIZE
 
 
 def draw_miss_map(maps: pd.DataFrame, bearings_deg, root: str, site: str):
-    """Figures X.1 and X.2: one panel per bearing of :func:`envelope.miss_map`'s rows for
-    ``root`` ("low" or "high"), each intercept point marked by its outcome
-    (:data:`envelope.OUTCOMES`): the class of the 3DOF's miss at the MKS solution, a star where
-    the 3DOF fired at it never reaches the target's altitude (with its legend entry only if a
-    point is one), open where beta exceeds the MKS's validity, a cross where there is no
-    solution; the firing elevation's contours over the points; ``site`` names the gun."""
+    """Figures X.1 and X.2: one panel per bearing of
+    :func:`~harp_analysis.analyses.fire_control.envelope.miss_map`'s rows for ``root`` ("low" or
+    "high"), each intercept point marked by its outcome
+    (:data:`~harp_analysis.analyses.fire_control.envelope.OUTCOMES`): the class of the 3DOF's miss
+    at the MKS solution, a star where the 3DOF fired at it never reaches the target's altitude (with
+    its legend entry only if a point is one), open where beta exceeds the MKS's validity, a cross
+    where there is no solution; the firing elevation's contours over the points; ``site`` names the
+    gun."""
     fig, axes = new_figure(
         1,
         len(bearings_deg),

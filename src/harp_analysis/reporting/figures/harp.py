@@ -22,9 +22,9 @@ _BAR_GREY = "#A6A6A6"
 
 def draw_residual_figure(site: str):
     """Figs 6.5 and 6.6: measured minus predicted apogee per round of ``site``
-    (:func:`apogees.predicted_apogees`, the dissertation model), the mean (dashed) and the mean
-    +- 1 std (band); a row that repeats an earlier one hatched and white, and where the
-    appendix prints its own Error (Yuma), a black dash on each bar."""
+    (:func:`~harp_analysis.analyses.harp.apogees.predicted_apogees`, the dissertation model), the
+    mean (dashed) and the mean +- 1 std (band); a row that repeats an earlier one hatched and white,
+    and where the appendix prints its own Error (Yuma), a black dash on each bar."""
     frame = apogees.predicted_apogees(site)
     fig, ax = new_figure(figsize=(FULL_WIDTH_IN, 3.8), layout="constrained")
     x = np.arange(len(frame))

@@ -1,5 +1,6 @@
-"""The figure of the calibrated MKS judged (X.10): reporting on :mod:`..analyses.mks_calibration`.
-It draws from the table the analysis returns and returns the figure; notebook 09 saves it."""
+"""The figure of the calibrated MKS judged (X.10): reporting on
+:mod:`~harp_analysis.analyses.mks_calibration`. It draws from the table the analysis returns and
+returns the figure; notebook 09 saves it."""
 
 from __future__ import annotations
 
@@ -28,9 +29,9 @@ _UNITS = {"impact_m": "m", "apogee_m": "m", "time_of_flight_s": "s"}
 
 
 def draw_judged_calibration(judged: pd.DataFrame) -> Figure:
-    """Figure X.10: for every judged launch (:func:`..analyses.mks_calibration.judge`: launches
-    never calibrated on), each model's error against the 3DOF, by the launch's elevation, one
-    panel per measure, log scale; filled markers on the turning Earth, open on a still one."""
+    """Figure X.10: for every judged launch (:func:`~harp_analysis.analyses.mks_calibration.judge`:
+    launches never calibrated on), each model's error against the 3DOF, by the launch's elevation,
+    one panel per measure, log scale; filled markers on the turning Earth, open on a still one."""
     fig, axes = new_figure(3, 1, figsize=(FULL_WIDTH_IN, 7.4), sharex=True, layout="constrained")
     turning = judged.turning.to_numpy()
     for ax, measure in zip(axes, MEASURES, strict=True):

@@ -59,7 +59,8 @@ _APOGEE: dict[str, Any] = dict(
 def compare_models(models: dict, x: str, y: str, *, scale_x=1e-3, scale_y=1e-3, xlabel="",
                    ylabel=""):  # fmt: skip
     """One panel with each of ``models`` (name -> its flight table) drawn as column ``y``
-    against column ``x``, in the engine's style (:func:`plotting.style`); returns the figure."""
+    against column ``x``, in the engine's style (:func:`~harp_analysis.reporting.plotting.style`);
+    returns the figure."""
     fig, ax = new_figure(figsize=(FULL_WIDTH_IN, 3.6), layout="constrained")
     for label, table in models.items():
         ax.plot(table[x] * scale_x, table[y] * scale_y, label=label, **plotting.style(label))
@@ -70,9 +71,9 @@ def compare_models(models: dict, x: str, y: str, *, scale_x=1e-3, scale_y=1e-3, 
 
 
 def direct_labels(ax, lines, labels, at=0.85, offsets=None):
-    """:func:`plotting.label_lines`, each label boxed in its line's colour (black text, which
-    reads on the palest shade too), optionally moved: ``offsets`` maps a label to its
-    ``(dx, dy)`` in points and its horizontal alignment."""
+    """:func:`~harp_analysis.reporting.plotting.label_lines`, each label boxed in its line's colour
+    (black text, which reads on the palest shade too), optionally moved: ``offsets`` maps a label to
+    its ``(dx, dy)`` in points and its horizontal alignment."""
     start = len(ax.texts)
     plotting.label_lines(ax, lines, labels, at=at)
     for text, line, label in zip(ax.texts[start:], lines, labels):
@@ -91,9 +92,9 @@ _LABEL_PLACES = (((3, 3), "left"), ((-3, 3), "right"), ((3, -3), "left"), ((-3, 
 
 def place_clear(fig, ax, labels) -> None:
     """Move each of ``labels`` (direct labels of ``ax``, annotations) to the first of
-    :data:`_LABEL_PLACES` about its point where it lies over no other label and no curve
-    (:func:`plotting.label_overlaps`); one that fits nowhere stays where it was put first,
-    for :func:`plotting.save_figure` to refuse."""
+    ``_LABEL_PLACES`` about its point where it lies over no other label and no curve
+    (:func:`~harp_analysis.reporting.plotting.label_overlaps`); one that fits nowhere stays where it
+    was put first, for :func:`~harp_analysis.reporting.plotting.save_figure` to refuse."""
     fig.draw_without_rendering()
     renderer = fig.canvas.get_renderer()
     for label in labels:
@@ -121,7 +122,8 @@ def mark_off_scale(ax, x, y, top, name, *, xytext=(8, -10), ha="left"):
 def error_figure(elevations_deg, *, lower: str | None = None, **variant):
     """The three-term MKS's total position error (eq 4.7, geometric reading) against the 3DOF
     for the baseline cone at ``elevations_deg`` (``variant``: keywords of
-    :func:`comparisons.case`), on the text's 0-4 km axis; a star at each 3DOF apogee.
+    :func:`~harp_analysis.analyses.comparisons.case`), on the text's 0-4 km axis; a star at each
+    3DOF apogee.
 
     ``lower`` adds a panel beneath: ``"detail"``, the same errors up to their largest value at
     the apogees times 2.5, where the errors before re-entry can be read; ``"cross range"``,
@@ -183,9 +185,9 @@ def _error_curve(axes, elevation: float, elevations_deg, lower: str | None, vari
 
 def draw_error_geometry(launch: Launch) -> Figure:
     """Fig 4.5: the geometry of the total position error (eqs 4.4-4.7) of ``launch``'s MKS at
-    the 3DOF's apogee (:func:`comparisons.fly`): at the simulation's angular range theta_i, the
-    radial error eps_r and the along-track error eps_theta (the time lag times the speed), which
-    combine along the MKS's flight-path angle Phi."""
+    the 3DOF's apogee (:func:`~harp_analysis.analyses.comparisons.fly`): at the simulation's angular
+    range theta_i, the radial error eps_r and the along-track error eps_theta (the time lag times
+    the speed), which combine along the MKS's flight-path angle Phi."""
     flight, solution, errors = comparisons.fly(launch)
     i = int(np.argmin(np.abs(errors.time_s - flight.attrs["apogee_time_s"])))
     row = errors.iloc[i]
@@ -276,8 +278,8 @@ _COUNTED = ("6DOF", "3DOF", "MLT", "MKS (3 terms)")
 
 
 def _effort_figure(table, column: str, label: str, methods) -> Figure:
-    """``table``'s (:func:`effort.effort_table`) ``column`` of each of ``methods`` against its
-    apogee difference from the 6DOF, both on log axes."""
+    """``table``'s (:func:`~harp_analysis.analyses.effort.effort_table`) ``column`` of each of
+    ``methods`` against its apogee difference from the 6DOF, both on log axes."""
     fig, ax = new_figure(figsize=(FULL_WIDTH_IN, 3.8), layout="constrained")
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -304,14 +306,15 @@ def _effort_figure(table, column: str, label: str, methods) -> Figure:
 
 def draw_effort(table) -> Figure:
     """Fig 4.7: floating-point operations of each method of ``table``
-    (:func:`effort.effort_table`) against its apogee difference from the 6DOF."""
+    (:func:`~harp_analysis.analyses.effort.effort_table`) against its apogee difference from the
+    6DOF."""
     return _effort_figure(table, "flops", "floating-point operations", _COUNTED)
 
 
 def draw_wall_time(table) -> Figure:
     """Fig 4.7 measured in wall time on this machine instead: every method of ``table``
-    (:func:`effort.effort_table`), the vectorised MKS too (not saved: it changes from run to
-    run)."""
+    (:func:`~harp_analysis.analyses.effort.effort_table`), the vectorised MKS too (not saved: it
+    changes from run to run)."""
     return _effort_figure(table, "seconds", "wall time on this machine (s)", table.index)
 
 
@@ -389,7 +392,8 @@ _MOMENTUM_ELEVATIONS_DEG = np.arange(30.0, 86.0, 5.0)
 
 def draw_asymptotic_momentum_error(elevations_deg=_MOMENTUM_ELEVATIONS_DEG) -> Figure:
     """Fig 4.12: the MKS's asymptotic angular momentum over the 3DOF's at apogee, minus 1 (%),
-    for the baseline cone at ``elevations_deg`` (:func:`comparisons.asymptotic_momentum_error`)."""
+    for the baseline cone at ``elevations_deg``
+    (:func:`~harp_analysis.analyses.comparisons.asymptotic_momentum_error`)."""
     fig, ax = new_figure(figsize=(FULL_WIDTH_IN, 3.4), layout="constrained")
     errors = [100 * comparisons.asymptotic_momentum_error("baseline", e) for e in elevations_deg]
     ax.plot(elevations_deg, errors, "o-", color=plotting.ENGINE_STYLES["MKS"]["color"], ms=5)
@@ -407,7 +411,7 @@ _STRAIGHT_LINES_TOP_M, _DRAG_TOP_M = 30e3, 45e3
 def draw_straight_lines(elevations_deg) -> Figure:
     """Fig 4.14: altitude against angular range below 30 km on the way up, the 3DOF's flight of
     the baseline cone at each of ``elevations_deg`` (solid) and its straight line of eq 3.16
-    (dotted, :func:`scenarios.straight_line_altitude_m`)."""
+    (dotted, :func:`~harp_analysis.analyses.scenarios.straight_line_altitude_m`)."""
     fig, ax = new_figure(figsize=(FULL_WIDTH_IN, 3.8), layout="constrained")
     lines = []
     for elevation in elevations_deg:

@@ -39,9 +39,9 @@ def _xy(angle, r):
 
 
 def draw_polar_coordinates(launch: Launch) -> Figure:
-    """Fig 3.1: the MKS of ``launch`` (:func:`comparisons.fly`) in the plane of flight about the
-    Earth's centre O, with r and theta marked at the apogee; both panels at true scale with
-    equal axes: (a) the whole sector, (b) the window marked in (a), near the surface."""
+    """Fig 3.1: the MKS of ``launch`` (:func:`~harp_analysis.analyses.comparisons.fly`) in the plane
+    of flight about the Earth's centre O, with r and theta marked at the apogee; both panels at true
+    scale with equal axes: (a) the whole sector, (b) the window marked in (a), near the surface."""
     solution = comparisons.fly(launch)[1]
     angles = np.linspace(0, solution.impact_angle, 300)
     radius_km = _RADIUS_KM + solution.altitude(angles) / 1e3
@@ -112,8 +112,9 @@ _STRAIGHT_LINE_TOP_M = 40e3
 
 def draw_straight_line(launch: Launch) -> Figure:
     """Fig 3.3: altitude against angular range on the way up below 40 km, the 3DOF's and the
-    MKS's flight of ``launch`` (:func:`comparisons.fly`) and eq 3.16's straight line
-    a = theta r0 tan(phi0) (:func:`scenarios.straight_line_altitude_m`)."""
+    MKS's flight of ``launch`` (:func:`~harp_analysis.analyses.comparisons.fly`) and eq 3.16's
+    straight line a = theta r0 tan(phi0)
+    (:func:`~harp_analysis.analyses.scenarios.straight_line_altitude_m`)."""
     flight, solution, _ = comparisons.fly(launch)
     low = scenarios.ascent_below(flight, _STRAIGHT_LINE_TOP_M)
     angle = low.ground_range_m / earth.RADIUS_M

@@ -5,7 +5,8 @@ Each figure takes ``flights``, the flight tables by (projectile name, model), e.
 ``{("HP", "3DOF"): ..., ("LP", "3DOF"): ..., ("HP", "6DOF"): ...}``, drawn in that order; the
 figures that compare the atmosphere's altitude (Figs 2.4, 2.8, 2.10) take ``spherical`` too, the
 6DOF flights by projectile with the air at the true altitude, as the 3DOF takes it. A model has
-its colour and line style, a projectile its marker (:func:`plotting.style`).
+its colour and line style, a projectile its marker
+(:func:`~harp_analysis.reporting.plotting.style`).
 """
 
 from __future__ import annotations
@@ -148,9 +149,9 @@ def draw_angular_momentum(flights: dict, spherical: dict) -> Figure:
 
 
 def draw_swerve(flights: dict) -> Figure:
-    """Fig 2.7: swerve (:func:`scenarios.swerve`: the 6DOF's and MLT's cross range minus the
-    3DOF's at the same time) against range; the lower panel zooms in on every swerve but HP's
-    MLT, which runs to kilometres and is marked where it leaves the panel."""
+    """Fig 2.7: swerve (:func:`~harp_analysis.analyses.scenarios.swerve`: the 6DOF's and MLT's cross
+    range minus the 3DOF's at the same time) against range; the lower panel zooms in on every swerve
+    but HP's MLT, which runs to kilometres and is marked where it leaves the panel."""
     fig, (top, bottom) = new_figure(2, 1, sharex=True, figsize=(FULL_WIDTH_IN, 5.4),
                                     gridspec_kw={"height_ratios": [1, 1]},
                                     layout="constrained")  # fmt: skip
@@ -181,7 +182,7 @@ def draw_swerve(flights: dict) -> Figure:
 def draw_mach_and_drag(flights: dict, spherical: dict) -> Figure:
     """Fig 2.8: the 3DOF's and 6DOF's Mach number (above) and drag coefficient (below) against
     range, with the 6DOF in the air at the true altitude (thin); HP's yaw drag past apogee
-    (:func:`scenarios.yaw_drag_peak`) is marked with its angle of attack."""
+    (:func:`~harp_analysis.analyses.scenarios.yaw_drag_peak`) is marked with its angle of attack."""
     fig, (top, bottom) = new_figure(2, 1, sharex=True, figsize=(FULL_WIDTH_IN, 5.6),
                                     layout="constrained")  # fmt: skip
     for ax, column in ((top, "mach"), (bottom, "drag_coefficient")):
@@ -203,7 +204,8 @@ def draw_mach_and_drag(flights: dict, spherical: dict) -> Figure:
 def draw_lower_atmosphere(flights: dict) -> Figure:
     """Fig 2.9: the 3DOF's and 6DOF's ascent below 20 km with the straight launch line at the
     first projectile's elevation (above); each flight's altitude minus its own launch line's
-    (:func:`scenarios.height_over_straight_line_m`, m), where the projectiles part (below)."""
+    (:func:`~harp_analysis.analyses.scenarios.height_over_straight_line_m`, m), where the
+    projectiles part (below)."""
     fig, (ax, below) = new_figure(2, 1, sharex=True, figsize=(FULL_WIDTH_IN, 5.4),
                                   gridspec_kw={"height_ratios": [3, 2]},
                                   layout="constrained")  # fmt: skip

@@ -292,10 +292,10 @@ _OFF_SCALE: dict[str, Any] = dict(
 
 def draw_distance_at_equal_time(latitude_deg: float, bearing_deg: float):
     """Figs 5.4-5.9: the ECI MKS's distance from the rotating-Earth 3DOF at equal time against
-    the 3DOF's ground range (:func:`rotating.case`), the baseline cone at
-    :data:`rotating.ELEVATIONS_DEG`, each curve labelled beside itself; a star at the 3DOF's apogee;
-    a curve that leaves the :data:`TOP_KM` axis is marked with an arrow where it does, its
-    maximum in the legend."""
+    the 3DOF's ground range (:func:`~harp_analysis.analyses.rotating.case`), the baseline cone at
+    :data:`~harp_analysis.analyses.rotating.ELEVATIONS_DEG`, each curve labelled beside itself; a
+    star at the 3DOF's apogee; a curve that leaves the :data:`TOP_KM` axis is marked with an arrow
+    where it does, its maximum in the legend."""
     elevations = rotating.ELEVATIONS_DEG
     fig, ax = new_figure(figsize=(FULL_WIDTH_IN, 3.6), layout="constrained")
     lines, marks, handles = [], [], []  # marks: the stars and arrows, which labels avoid

@@ -1,9 +1,9 @@
 """Chapter 7 A's counts, built: the MKS trajectories of a firing solution against the 3DOF's
-equations of motion (:func:`shoot_3dof`, the iterative 3DOF firing solution alone), a raid's
-MKS intercepts against one iterative 3DOF intercept, and one verified firing solution's
-operations, by default in :func:`.firing.barbados_case`. Counts, not wall times: the ledger
-reads them and must come out the same on every machine; the wall times of the same work are
-``benchmarks/bench_fire_control.py``'s.
+equations of motion (:func:`~harp_analysis.analyses.fire_control.studies.costs.shoot_3dof`, the
+iterative 3DOF firing solution alone), a raid's MKS intercepts against one iterative 3DOF intercept,
+and one verified firing solution's operations, by default in :func:`.firing.barbados_case`. Counts,
+not wall times: the ledger reads them and must come out the same on every machine; the wall times of
+the same work are ``benchmarks/bench_fire_control.py``'s.
 
 SI inside (m, s, rad); degrees only in the arguments and fields named ``_deg``.
 """
@@ -208,9 +208,9 @@ def eom_evaluations_per_3dof_firing_solution(
     gun: Launch | None = None, target: TargetPoint | None = None, *, rtol: float = 1e-9
 ) -> Verification:
     """The iterative 3DOF firing solution, whose ``rhs_evaluations`` count the 3DOF's equations
-    of motion solved (:func:`shoot_3dof` from the drag-free conic, every flight of the shooting
-    included) of :func:`.firing.barbados_case` by default. Chapter 7 A: "hundreds of thousands or
-    millions of numerical EOM solutions"."""
+    of motion solved (:func:`~harp_analysis.analyses.fire_control.studies.costs.shoot_3dof` from the
+    drag-free conic, every flight of the shooting included) of :func:`.firing.barbados_case` by
+    default. Chapter 7 A: "hundreds of thousands or millions of numerical EOM solutions"."""
     gun, target = barbados_case() if gun is None or target is None else (gun, target)
     return shoot_3dof(gun, target, rtol=rtol)
 
@@ -283,7 +283,8 @@ def raid_against_3dof_intercept(
 class VerifiedSolutionWork:
     """The operations of one firing solution as a gun's computer would run it (Chapter 2's
     "in real time as the gun swings into place"): both MKS roots, then the low root refined by
-    the 3DOF to a miss under 1 m, each counted as Fig 4.7 counts (:mod:`..effort`)."""
+    the 3DOF to a miss under 1 m, each counted as Fig 4.7 counts
+    (:mod:`~harp_analysis.analyses.effort`)."""
 
     mks_trajectories: int  # both roots and their search
     mks_operations_per_trajectory: float  # one three-term MKS evaluation's, a lower bound

@@ -1,12 +1,12 @@
 """A better first guess, measured (issue 24 item 4): the improved MKS (Chapter 7 C,
 :mod:`.mks_improved`) as the fire-control solver's model, against the ECI MKS the text has.
 
-The 3DOF refinement (:func:`.fire_control.verify_with_3dof`) starts from a model's firing
-solution; the closer that solution lands when the 3DOF flies it, the fewer 3DOF flights the
-refinement needs. The ECI MKS leaves out the drag's decay on the way down and takes eq 3.11's
-air at the launch Cd0 all the way up; the improved MKS models both (its module docstring), at a
-few ms a solve and some tens of ms a root, where the compiled ECI MKS finds both roots in well
-under a ms.
+The 3DOF refinement (:func:`~harp_analysis.analyses.fire_control.verification.verify_with_3dof`)
+starts from a model's firing solution; the closer that solution lands when the 3DOF flies it, the
+fewer 3DOF flights the refinement needs. The ECI MKS leaves out the drag's decay on the way down and
+takes eq 3.11's air at the launch Cd0 all the way up; the improved MKS models both (its module
+docstring), at a few ms a solve and some tens of ms a root, where the compiled ECI MKS finds both
+roots in well under a ms.
 
 :func:`improved_solution` moves an ECI MKS root to the improved MKS's root: Newton's method on
 (elevation, bearing), the residual the east and north miss at the target of the improved MKS
@@ -22,7 +22,7 @@ improved MKS's solves are most of it).
 Frames: the improved MKS's positions are inertial, in the 3DOF's frame (x toward longitude 0
 at t = 0, z north); a point reached at time t is fixed to the Earth at that point turned by
 -omega t about z (:attr:`.mks_improved.ImprovedSolution.impact_point_m` does the same), where
-:meth:`.fire_control.TargetPoint.earth_fixed_m` places the target.
+:meth:`~harp_analysis.analyses.fire_control.firing.TargetPoint.earth_fixed_m` places the target.
 
 SI inside (m, s, rad); degrees only in the arguments and columns named ``_deg``.
 """
@@ -69,8 +69,8 @@ __all__ = [
 
 MODELS = ("mks", "improved")
 ROOTS = ("low", "high")
-#: The two guns: Barbados's HP (:data:`.fire_control.BARBADOS_HP`) and the same gun at Yuma's
-#: latitude (Ch. 6 D) and longitude (about 114.4 deg W).
+#: The two guns: Barbados's HP (:data:`~harp_analysis.analyses.fire_control.firing.BARBADOS_HP`) and
+#: the same gun at Yuma's latitude (Ch. 6 D) and longitude (about 114.4 deg W).
 GUNS: dict[str, Launch] = {
     "Barbados": firing.BARBADOS_HP,
     "Yuma": firing.BARBADOS_HP.but(
@@ -210,16 +210,16 @@ def improved_solution(
     calibration: mks_improved.Calibration = mks_improved.UNCALIBRATED,
 ) -> FiringSolution | None:
     """The improved MKS's firing solution of ``target``, from the ECI MKS's ``solution`` (a
-    root of :func:`.fire_control.firing_solutions` for ``gun``): Newton's method on (elevation,
-    bearing), at most ``iterations`` steps, the residual the improved MKS's east and north miss
-    at the target on the solution's branch, the first Jacobian ``solution.jacobian_m_rad``
-    (Broyden's update along each step; a step that lands further off is halved). Stops once the
-    improved MKS passes within 1 m. Returns ``solution`` with the new elevation, bearing, time of
-    flight, fire time, miss (the improved MKS's), Jacobian (the updated one) and ``mks_solves``
-    (improved MKS solves taken); ``beta`` and ``leaves_atmosphere`` stay the ECI root's. None if
-    it does not converge, or the improved MKS has no solution on the way (its re-entry decay
-    diverges on some westward shots). A ModelValidityWarning where the root lies outside the
-    improved MKS's band of :func:`.mks_improved.air_momentum_share`."""
+    root of :func:`~harp_analysis.analyses.fire_control.firing.firing_solutions` for ``gun``):
+    Newton's method on (elevation, bearing), at most ``iterations`` steps, the residual the improved
+    MKS's east and north miss at the target on the solution's branch, the first Jacobian
+    ``solution.jacobian_m_rad`` (Broyden's update along each step; a step that lands further off is
+    halved). Stops once the improved MKS passes within 1 m. Returns ``solution`` with the new
+    elevation, bearing, time of flight, fire time, miss (the improved MKS's), Jacobian (the updated
+    one) and ``mks_solves`` (improved MKS solves taken); ``beta`` and ``leaves_atmosphere`` stay the
+    ECI root's. None if it does not converge, or the improved MKS has no solution on the way (its
+    re-entry decay diverges on some westward shots). A ModelValidityWarning where the root lies
+    outside the improved MKS's band of :func:`.mks_improved.air_momentum_share`."""
     gun = firing.check_gun(gun)
     target = firing.check_target(target)
     solution = _check_solution(solution, target)
@@ -348,8 +348,9 @@ def _row_points(gun: Launch, bearings, downranges, altitudes):
 
 
 def _verify(gun: Launch, entries: list, which: int) -> tuple[list, float]:
-    """:func:`.fire_control.verify_with_3dof` of the solutions ``entry[which]`` of ``entries``
-    (None where there is none) in one batch, and its wall time (s)."""
+    """:func:`~harp_analysis.analyses.fire_control.verification.verify_with_3dof` of the solutions
+    ``entry[which]`` of ``entries`` (None where there is none) in one batch, and its wall time
+    (s)."""
     chosen = [entry for entry in entries if entry[which] is not None]
     start = time.perf_counter()
     checks = (
@@ -471,14 +472,15 @@ def compare_first_guesses(
     name to Launch), every point ``downranges_m`` along each of ``bearings_deg`` at each of
     ``altitudes_m``, met on ``branch``, and each root the ECI MKS finds there, the ECI MKS's
     solution and the improved MKS's (:func:`improved_solution` from it), each flown by the 3DOF
-    and refined to land within 1 m (:func:`.fire_control.verify_with_3dof`, each model's roots
-    of a gun in one batch). One row per point, root and model (:data:`COLUMNS`); points out of
-    the ECI MKS's reach have none. Where the improved MKS finds no root its row keeps NaN, no
-    flights, converged False and the reason. ``model_time_s``: the ECI MKS's single-target
-    solve shared between its roots; the improved's, that plus its own Newton's (it starts from
-    the MKS's root). ``refine_time_s``: the model's 3DOF batch's wall time shared by flights;
-    ``frame.attrs`` holds ``seconds_per_3dof_flight`` (the batches' time over their flights),
-    ``branch`` and ``projectiles`` (the guns' projectiles' names)."""
+    and refined to land within 1 m
+    (:func:`~harp_analysis.analyses.fire_control.verification.verify_with_3dof`, each model's roots
+    of a gun in one batch). One row per point, root and model (:data:`COLUMNS`); points out of the
+    ECI MKS's reach have none. Where the improved MKS finds no root its row keeps NaN, no flights,
+    converged False and the reason. ``model_time_s``: the ECI MKS's single-target solve shared
+    between its roots; the improved's, that plus its own Newton's (it starts from the MKS's root).
+    ``refine_time_s``: the model's 3DOF batch's wall time shared by flights; ``frame.attrs`` holds
+    ``seconds_per_3dof_flight`` (the batches' time over their flights), ``branch`` and
+    ``projectiles`` (the guns' projectiles' names)."""
     guns = _check_guns(guns)
     bearings = _check_values(bearings_deg, "bearings_deg", Bounds(0.0, 360.0, unit="deg"))
     downranges = _check_values(downranges_m, "downranges_m", Bounds(low=0.0, low_inclusive=False))
