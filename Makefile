@@ -5,10 +5,10 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 
 # OpenBLAS picks its kernels by processor, and results that sum through BLAS (scipy's DOP853
 # adds its stages with it, numpy's matrix products use it) differ in their last bits from one
-# kernel to another; adaptive steps and iterations follow them: the 6DOF takes 64.5 or 64.8
-# times the 3DOF's operations (Fig 4.7), a raid 263,489 or 263,471 MKS trajectories. The
-# figures, the ledger and the tests run with one kernel, AVX2's, which every x86-64 machine of
-# the last decade runs, so that they regenerate alike on any of them.
+# kernel to another; adaptive steps and iterations follow them (the 6DOF's operations in
+# Fig 4.7, a raid's MKS trajectories: CHANGELOG.md). The figures, the ledger and the tests run
+# with one kernel, AVX2's, which every x86-64 machine of the last decade runs, so that they
+# regenerate alike on any of them.
 ifeq ($(shell uname -m),x86_64)
 OPENBLAS_CORETYPE ?= Haswell
 export OPENBLAS_CORETYPE
