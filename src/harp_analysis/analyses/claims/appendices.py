@@ -1,10 +1,7 @@
 """Quantities behind statements of the appendices that the ledger scores (rows ``appA.*``,
 ``appB.*``, ``appD.*`` and ``appE.*``): Appendix A's rotation terms as printed, Appendix B's
 printed angle of attack, and the share of the rounds of Appendices D and E whose derived columns
-the package recomputes to within rounding. Each turns a remark of the text into a number (its
-docstring says how).
-
-SI units inside; arguments name their units.
+the package recomputes to within rounding.
 """
 
 from __future__ import annotations

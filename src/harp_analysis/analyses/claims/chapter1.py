@@ -1,11 +1,7 @@
 """Quantities behind statements of Chapter 1 that the ledger scores (rows ``ch1.*``): the V-3's
 apogee (1 B), the standard Kepler solution overshooting and flat fire undershooting (1 A),
 HARP's highest round (1 B), and MLT's cost, the MKS's accuracy, flat fire's miss and the air in
-low Earth orbit (1 A, 1 C). Each turns a remark of the text into a number (its docstring says
-how).
-
-SI units inside; arguments name their units. Flights come from the cached engines of
-analyses.scenarios and analyses.effort, so the ledger and the notebooks share one run.
+low Earth orbit (1 A, 1 C).
 """
 
 from __future__ import annotations

@@ -2,12 +2,8 @@
 ``atm.two_segment.continuous_break``): the order of Appendix A's scheme, HP's inertia, the
 angle of attack, Mach number, drag coefficient, speed, turn and angular momentum of the
 reference flights (2 B), the share of the range gravity dominates, the Earth's GM, the density
-fit's break, and what the Earth's rotation moves (2 A). Each turns a remark of the text into a
-number (its docstring says how).
-
-SI units inside; arguments name their units. Chapter 2 A's flights come from the cached engines
-of analyses.scenarios, so the ledger and the notebooks share one run; the rotation's and
-Appendix A's flights are flown here.
+fit's break, and what the Earth's rotation moves (2 A). The rotation's and Appendix A's flights
+are flown here.
 """
 
 from __future__ import annotations

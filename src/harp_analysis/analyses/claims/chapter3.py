@@ -1,11 +1,7 @@
 """Quantities behind statements of Chapter 3 that the ledger scores (rows ``ch3.*``; the
 baseline's angular momentum lost below 20 km also scores ``ch4.momentum_below_20km_almost_all``):
 where the standard Kepler solution holds (the introduction), Fig 3.4's resonance and the series
-terms needed (3 C), and Assumption 5's angular momentum (3 B). Each turns a remark of the text
-into a number (its docstring says how).
-
-SI units inside; arguments name their units. Flights come from the cached engines of
-analyses.scenarios and analyses.comparisons, so the ledger and the notebooks share one run.
+terms needed (3 C), and Assumption 5's angular momentum (3 B).
 """
 
 from __future__ import annotations

@@ -1,11 +1,7 @@
 """Quantities behind statements of Chapter 4 that the ledger scores (rows ``ch4.*``): the speed
 lost on re-entry and the HARP spread against the MKS's error (4 A), beta's accuracy limit, the
 baseline's elevations and Mach numbers, and the launch error correcting itself (4 B), the
-faster launch and Assumption 3 off the design launch (4 C). Each turns a remark of the text
-into a number (its docstring says how).
-
-SI units inside; arguments name their units. Flights come from the cached engines of
-analyses.scenarios and analyses.comparisons, so the ledger and the notebooks share one run.
+faster launch and Assumption 3 off the design launch (4 C).
 """
 
 from __future__ import annotations

@@ -1,9 +1,7 @@
 """Quantities behind statements of Chapter 6 that the ledger scores (rows ``ch6.*``): the lowest
 measured apogees, the atmosphere's terms at eq 6.4's apogee angle, and the sea-level density at
-Barbados and Yuma (6 C-D). Each turns a remark of the text into a number (its docstring says
-how).
-
-SI units inside; arguments name their units. The rounds come from analyses.harp.apogees.
+Barbados and Yuma (6 C-D). The rounds are those of
+:mod:`~harp_analysis.analyses.harp.apogees`.
 """
 
 from __future__ import annotations

@@ -1,11 +1,7 @@
 """Quantities behind statements of Chapter 7 that the ledger scores (rows ``ch7.*`` and
 ``ch7c.*``): the cost of a firing solution by the MKS and by the 3DOF (7 A), a pointing error
 against the MKS's error (7 B), the ground-fire miss, a late arrival and the error's growth over
-the trajectory (7 C). Each turns a remark of the text into a number (its docstring says how).
-
-SI units inside; arguments name their units. Chapter 4's cases come from the cached engines of
-analyses.comparisons, so the ledger and the notebooks share one run, and the operation counts
-from analyses.effort; the firing solutions and pointing errors fly the 3DOF here.
+the trajectory (7 C). The firing solutions and pointing errors fly the 3DOF here.
 """
 
 from __future__ import annotations
