@@ -71,11 +71,12 @@ class Engine:
     summary: str  # what it is, in a line
     fly: Callable[..., pd.DataFrame]
     tolerance: str  # the option that sets its numerical accuracy: tighter, closer to converged
-    wind: bool  # flies the launch's head and cross wind
-    rotating_earth: bool  # flies a launch on the turning Earth (rotation_rate_rad_s)
-    day_air: bool  # flies the day's density and temperature change
-    full_table: bool  # every column of trajectory.BASE_COLUMNS
-    rigid_body: bool  # needs Appendix B's projectile (aerodynamic tables and inertias: HP, LP)
+    # What it models, each off unless its row says so:
+    wind: bool = False  # flies the launch's head and cross wind
+    rotating_earth: bool = False  # flies a launch on the turning Earth (rotation_rate_rad_s)
+    day_air: bool = False  # flies the day's density and temperature change
+    full_table: bool = True  # every column of trajectory.BASE_COLUMNS (all but Appendix A's)
+    rigid_body: bool = False  # needs Appendix B's projectile (aerodynamic tables and inertias)
     fly_batch: Callable[..., pd.DataFrame] | None = None
     counted: Callable[[Launch], tuple[Counted, ...]] | None = None
 
@@ -95,8 +96,6 @@ _ENGINES = (
         wind=True,
         rotating_earth=True,
         day_air=True,
-        full_table=True,
-        rigid_body=False,
         fly_batch=threedof.simulate_3dof_batch,
         counted=threedof.counted_functions,
     ),
@@ -107,9 +106,6 @@ _ENGINES = (
         sixdof.simulate_6dof,
         "rtol",
         wind=True,
-        rotating_earth=False,
-        day_air=False,
-        full_table=True,
         rigid_body=True,
         counted=sixdof.counted_functions,
     ),
@@ -120,9 +116,6 @@ _ENGINES = (
         mlt.simulate_mlt,
         "segment_length_m",
         wind=True,
-        rotating_earth=False,
-        day_air=False,
-        full_table=True,
         rigid_body=True,
         counted=mlt.counted_functions,
     ),
@@ -132,11 +125,7 @@ _ENGINES = (
         "the Modified Kepler Solution (eq 3.30) on a non-rotating Earth, closed form",
         mks.simulate_mks,
         "n_terms",
-        wind=False,
-        rotating_earth=False,
         day_air=True,
-        full_table=True,
-        rigid_body=False,
     ),
     Engine(
         "eci_mks",
@@ -144,11 +133,8 @@ _ENGINES = (
         "the MKS on the rotating Earth (Chapter 5's inertial-frame correction), closed form",
         eci.simulate_eci_mks,
         "n_terms",
-        wind=False,
         rotating_earth=True,
         day_air=True,
-        full_table=True,
-        rigid_body=False,
     ),
     Engine(
         "calibrated_mks",
@@ -156,11 +142,8 @@ _ENGINES = (
         "the ECI MKS corrected by a table learned from the gun's 3DOF flights (Chapter 7 C)",
         calibrated_mks.simulate_calibrated_mks,
         "grid",
-        wind=False,
         rotating_earth=True,
         day_air=True,
-        full_table=True,
-        rigid_body=False,
     ),
     Engine(
         "flyout_table",
@@ -168,11 +151,8 @@ _ENGINES = (
         "the gun's 3DOF flights over a grid, interpolated directly (Chapter 7 A's fly-out table)",
         flyout_table.simulate_flyout_table,
         "grid",
-        wind=False,
         rotating_earth=True,
         day_air=True,
-        full_table=True,
-        rigid_body=False,
     ),
     Engine(
         "appendix_a",
@@ -180,11 +160,9 @@ _ENGINES = (
         "Appendix A's own fixed-step numerics, to explain artefacts of the original figures",
         appendix_a.simulate_appendix_a,
         "dt_s",
-        wind=False,
         rotating_earth=True,
         day_air=True,
         full_table=False,
-        rigid_body=False,
     ),
 )
 #: Every engine by name, in the order above.
