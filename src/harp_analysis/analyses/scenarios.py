@@ -222,16 +222,10 @@ def reference_6dof(projectile: str, density_altitude: str = "flat") -> pd.DataFr
     return fly_6dof(reference_launch(projectile), density_altitude)
 
 
-def reference_mlt(
-    projectile: str,
-    density_altitude: str = "flat",
-    segment_length_m: float = 1000.0,
-    coefficients_at: str = "middle",
-) -> pd.DataFrame:
-    """The MLT flight of ``projectile`` in Chapter 2 A's conditions (:func:`fly_mlt`)."""
-    return fly_mlt(
-        reference_launch(projectile), density_altitude, segment_length_m, coefficients_at
-    )
+def reference_mlt(projectile: str, density_altitude: str = "flat") -> pd.DataFrame:
+    """The MLT flight of ``projectile`` in Chapter 2 A's conditions (:func:`fly_mlt`, its
+    default segments)."""
+    return fly_mlt(reference_launch(projectile), density_altitude)
 
 
 RIGID_BODY_METHODS = ("6DOF", "MLT")
