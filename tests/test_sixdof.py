@@ -81,7 +81,9 @@ def test_no_roll_derivative_is_appendix_b_turned_into_the_no_roll_frame(
     expected = _expected_no_roll_derivative(
         body, sixdof.appendix_b_derivatives(body, projectile, **kwargs)
     )
-    actual = sixdof.no_roll_derivatives(_body_to_no_roll(body), projectile, **kwargs)
+    actual = sixdof.appendix_b_derivatives(
+        _body_to_no_roll(body), projectile, frame="no_roll", **kwargs
+    )
     # Each group (position, angles, velocity, rates) to 1e-9 of its own size, or of the
     # rounding of its largest cross-product term (omega x V; omega x I omega, whose x component
     # q Iz r - r Iy q is zero only in exact arithmetic in the body frame).
@@ -433,15 +435,17 @@ def test_projectile_without_6dof_data_is_named(missing):
 def test_bad_derivative_input_is_named():
     state = np.array([0, 0, 0, 0, 0.8, 0, 2022.0, 0, 0, 10.0, 0, 0])
     with pytest.raises(ValueError, match="state"):
-        sixdof.no_roll_derivatives(state[:11], HP)
+        sixdof.appendix_b_derivatives(state[:11], HP, frame="no_roll")
     with pytest.raises(ValueError, match="state"):
         sixdof.appendix_b_derivatives(np.where(np.arange(12) == 7, np.nan, state), HP)
     with pytest.raises(ValueError, match="wind_m_s"):
         sixdof.appendix_b_derivatives(state, HP, wind_m_s=(0.0, 5.0))
     with pytest.raises(ValueError, match="density_altitude"):
-        sixdof.no_roll_derivatives(state, HP, density_altitude="curved")
+        sixdof.appendix_b_derivatives(state, HP, frame="no_roll", density_altitude="curved")
     with pytest.raises(TypeError, match="projectile"):
         sixdof.appendix_b_derivatives(state, "HP")
+    with pytest.raises(ValueError, match="frame"):
+        sixdof.appendix_b_derivatives(state, HP, frame="inertial")
     with pytest.raises(ValueError, match="t_end_s"):
         sixdof.integrate_fixed_step(lambda t, y: y, [1.0], 0.3, 1.0)
     with pytest.raises(ValueError, match="h_s"):

@@ -43,8 +43,8 @@ test; its output column 6, the "angle of attack", is sqrt(v^2 + w^2)/u in degree
 angle tangent, inertial velocity), meaningless at the large angles reached above the
 atmosphere; rows are written at the first step after each 0.5 s mark.
 
-The no-roll formulation (:func:`no_roll_derivatives`, used by :func:`simulate_6dof`)
-------------------------------------------------------------------------------------
+The no-roll formulation (used by :func:`simulate_6dof`)
+-----------------------------------------------------
 The fins spin the projectile from 10 rad/s to the roll equilibrium p d / (2V) = -CLDD/CLP
 (about 300 rad/s for HP, 445 for LP) within a second, so body-axis v, w, q, r oscillate at the
 spin rate and an adaptive integrator needs ~1e5+ steps. The projectile is axisymmetric in the
@@ -100,7 +100,7 @@ from scipy.integrate import solve_ivp
 from ..foundation import earth
 from ..foundation.compiled import jit
 from ..foundation.counting import Counted
-from ..foundation.validation import Bounds, finite_array, positive_scalar
+from ..foundation.validation import Bounds, check_choice, finite_array, positive_scalar
 from ..models.atmosphere import get_atmosphere
 from ..models.launch import HP_CHAPTER_2, Launch
 from ..models.projectiles import Projectile
@@ -120,7 +120,6 @@ from ..models.trajectory import TruncatedFlightWarning
 
 __all__ = [
     "appendix_b_derivatives",
-    "no_roll_derivatives",
     "right_hand_side",
     "counted_functions",
     "simulate_6dof",
@@ -130,6 +129,8 @@ __all__ = [
 
 _R = earth.RADIUS_M
 _GM = earth.GM_M3_S2
+#: The frames :func:`appendix_b_derivatives` resolves the velocities in.
+_FRAMES = ("body", "no_roll")
 
 # Absolute error floors per state for solve_ivp: micrometre positions, 1e-10 rad attitudes,
 # 1e-7 m/s velocities and 1e-10 rad/s pitch/yaw rates (q, r are ~1e-3 rad/s in vacuum).
@@ -140,8 +141,8 @@ _ATOL = np.array([1e-6] * 3 + [1e-10] * 3 + [1e-7] * 3 + [1e-8, 1e-10, 1e-10])
 def right_hand_side(t, state, kernel):
     """The no-roll right-hand side (module docstring, steps 1-5) of the model whose
     :attr:`~harp_analysis.models.rigid_body.RigidBodyModel.kernel` is ``kernel``, compiled: what
-    DOP853 calls in :func:`simulate_6dof` (unchecked; :func:`no_roll_derivatives` is the checked
-    form). ``state`` holds the 12 no-roll states
+    DOP853 calls in :func:`simulate_6dof` (unchecked; the checked form is
+    :func:`appendix_b_derivatives` with ``frame="no_roll"``). ``state`` holds the 12 no-roll states
     (:data:`~harp_analysis.models.rigid_body.STATE_NAMES`)."""
     model = RigidBodyKernel(*kernel)
     x, y, z, _, theta, psi, u, v, w, p, q, r = state
@@ -288,16 +289,21 @@ def appendix_b_derivatives(
     state,
     projectile: Projectile,
     *,
+    frame: str = "body",
     atmosphere="two_segment",
     wind_m_s=(0.0, 0.0, 0.0),
     density_altitude: str = "flat",
 ) -> np.ndarray:
-    """Time derivative of Appendix B's 12 states: a port of ``PROJ6DOF_M829_DERV`` (App. B).
+    """Time derivative of Appendix B's 12 states: a port of ``PROJ6DOF_M829_DERV`` (App. B),
+    in the body frame as printed (``frame="body"``) or, exactly the same equations, in the
+    no-roll frame :func:`simulate_6dof` integrates (``frame="no_roll"``; derivation in the
+    module docstring).
 
     ``state`` is ``[x y z phi theta psi u v w p q r]`` (flat frame, z down; 3-2-1 Euler angles;
-    body-axis velocity and angular velocity). Forces, moments, the kinematic matrix K, TIB and
-    the weight expression (including its omitted y^2, see the module docstring) are the
-    code's. Differences from the printed code:
+    velocity and angular velocity along the body's axes, or in the no-roll frame the body's v,
+    w and q, r rotated back by phi, phi then carried for output only). Forces, moments, the
+    kinematic matrix K, TIB and the weight expression (including its omitted y^2, see the
+    module docstring) are the code's. Differences from the printed code:
 
     - density, speed of sound and the aero coefficients are evaluated at ``state`` (the code
       evaluates them once per RK4 step at the step's start, outside this function);
@@ -311,27 +317,12 @@ def appendix_b_derivatives(
     ``atmosphere`` is a name of :data:`harp_analysis.models.atmosphere.ATMOSPHERE_NAMES` or an
     :class:`~harp_analysis.models.atmosphere.AtmosphereModel`.
     """
+    check_choice(frame, "frame", _FRAMES)
     model = rigid_body_model(projectile, atmosphere, wind_m_s, density_altitude)
-    return _appendix_b(model, _checked_state(state))
-
-
-def no_roll_derivatives(
-    state,
-    projectile: Projectile,
-    *,
-    atmosphere="two_segment",
-    wind_m_s=(0.0, 0.0, 0.0),
-    density_altitude: str = "flat",
-) -> np.ndarray:
-    """The equations of :func:`appendix_b_derivatives`, exactly, in the no-roll frame
-    (Appendix B; derivation in the module docstring).
-
-    ``state`` is ``[x y z phi theta psi u v w p q r]`` with u, v, w and p, q, r resolved in the
-    no-roll frame (the body's v, w and q, r rotated back by phi); phi is carried for output
-    only. The arguments are those of :func:`appendix_b_derivatives`.
-    """
-    model = rigid_body_model(projectile, atmosphere, wind_m_s, density_altitude)
-    return np.array(right_hand_side(0.0, _checked_state(state), model.kernel))
+    state = _checked_state(state)
+    if frame == "body":
+        return _appendix_b(model, state)
+    return np.array(right_hand_side(0.0, state, model.kernel))
 
 
 def integrate_fixed_step(
@@ -385,8 +376,8 @@ def simulate_6dof(
     Launch from the flat frame's origin with psi = phi = 0, theta = the launch elevation, body
     velocity [speed, 0, 0] and roll rate ``launch.spin_rad_s``; the launch's cross wind blows
     along +y (toward positive cross range), its head wind along -x. The equations are Appendix
-    B's (:func:`appendix_b_derivatives`) integrated in the no-roll frame
-    (:func:`no_roll_derivatives`) by scipy's DOP853 with relative tolerance ``rtol``; air
+    B's (:func:`appendix_b_derivatives`) integrated in the no-roll frame (its
+    ``frame="no_roll"``) by scipy's DOP853 with relative tolerance ``rtol``; air
     density at the flat-frame altitude as Appendix B takes it, or ``density_altitude=
     "spherical"``.
 
