@@ -96,7 +96,7 @@ def _eci_outputs(launch):
 
 
 def _calibrated_outputs(launch, calibration):
-    solution = calibrated_mks.solution_for_launch(launch, calibration)
+    solution = calibrated_mks.CalibratedSolution(launch, calibration)
     return solution.time_of_flight_s, solution.apogee_altitude_m, solution.impact_point_m
 
 

@@ -90,7 +90,7 @@ def test_at_a_node_it_flies_the_flight_it_learned(coarse):
     the apogee and every position at the table's fractions of the flight."""
     launch = Launch(BASELINE, 0.8 * BASELINE.launch_speed_m_s, 50.0, density_change_fraction=0.1)
     flight = threedof.simulate_3dof(launch, output_step_s=0.05)
-    solution = calibrated_mks.solution_for_launch(launch, coarse)
+    solution = calibrated_mks.CalibratedSolution(launch, coarse)
     assert solution.time_of_flight_s == pytest.approx(flight.attrs["time_of_flight_s"], rel=1e-12)
     assert solution.apogee_altitude_m == pytest.approx(flight.attrs["apogee_altitude_m"], abs=1e-6)
     times = flight_grid.TIME_NODES[1:-1] * flight.attrs["time_of_flight_s"]
@@ -135,7 +135,7 @@ def test_a_node_the_turning_earth_leaves_vertical_is_learned():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelValidityWarning)
         learned = calibrated_mks.calibrate(gun, grid)
-        solution = calibrated_mks.solution_for_launch(launch, learned)
+        solution = calibrated_mks.CalibratedSolution(launch, learned)
     flight = threedof.simulate_3dof(launch)
     assert np.ravel(solution.apogee_altitude_m)[0] == pytest.approx(
         flight.attrs["apogee_altitude_m"], abs=1e-6
@@ -158,7 +158,7 @@ def test_between_the_nodes_it_is_far_closer_to_the_3dof_than_the_eci_mks():
             )
             flight = threedof.simulate_3dof(launch)
             text = eci.simulate_eci_mks(launch, warn=False).attrs
-            solution = calibrated_mks.solution_for_launch(launch)
+            solution = calibrated_mks.CalibratedSolution(launch)
             truth = flight.attrs
             ours.append(
                 [abs(solution.impact_range_m[0] - truth["range_m"]),
@@ -183,7 +183,7 @@ def test_on_the_turning_earth_its_impact_is_fixed_to_the_earth():
     )  # fmt: skip
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelValidityWarning)
-        solution = calibrated_mks.solution_for_launch(launch)
+        solution = calibrated_mks.CalibratedSolution(launch)
         flight = threedof.simulate_3dof(launch)
     tof = solution.time_of_flight_s
     inertial = solution.positions([tof])[0]
@@ -217,7 +217,7 @@ def launches_between_nodes():
         draws.uniform(0.0, 360.0, count),
         draws.uniform(-0.1, 0.1, count),
     )
-    solution = calibrated_mks.solution_for_launch(launches)
+    solution = calibrated_mks.CalibratedSolution(launches)
     altitude = draws.uniform(0.0, 0.9, count) * solution.apogee_altitude_m
     rising = draws.uniform(size=count) < 0.5
     return launches, solution, altitude, rising
@@ -253,7 +253,7 @@ def test_the_crossing_ends_at_the_impact_and_is_nan_above_the_apogee(launches_be
     assert np.isnan(time).all() and np.isnan(point).all()
     time, point = solution.crossing(solution.apogee_altitude_m - 100.0, rising)
     assert np.isfinite(time).all() and np.isfinite(point).all()
-    one = calibrated_mks.solution_for_launch(launches[3])
+    one = calibrated_mks.CalibratedSolution(launches[3])
     halfway = 0.5 * one.apogee_altitude_m
     single = one.crossing(halfway, True)
     assert isinstance(single[0], float) and single[1].shape == (3,)
@@ -279,12 +279,12 @@ def test_the_crossing_ends_at_the_impact_and_is_nan_above_the_apogee(launches_be
 def test_a_launch_outside_its_band_or_gun_is_refused_by_name(coarse, change, message):
     launch = Launch(BASELINE, BASELINE.launch_speed_m_s, 45.0).but(**change)
     with pytest.raises(ValueError, match=message):
-        calibrated_mks.solution_for_launch(launch, coarse)
+        calibrated_mks.CalibratedSolution(launch, coarse)
 
 
 def test_a_wind_is_left_out_with_a_warning(coarse):
     with pytest.warns(ModelValidityWarning, match="cross_wind_m_s"):
-        calibrated_mks.solution_for_launch(
+        calibrated_mks.CalibratedSolution(
             Launch(BASELINE, BASELINE.launch_speed_m_s, 45.0, cross_wind_m_s=5.0), coarse
         )
 
@@ -328,7 +328,7 @@ def test_a_calibration_is_learned_once_kept_on_disk_and_read_only(monkeypatch, t
 def test_the_trajectory_table_meets_its_own_numbers():
     launch = Launch(BASELINE, BASELINE.launch_speed_m_s, 45.0)
     table = calibrated_mks.simulate_calibrated_mks(launch, n_points=200)
-    solution = calibrated_mks.solution_for_launch(launch)
+    solution = calibrated_mks.CalibratedSolution(launch)
     attrs = table.attrs
     assert attrs["time_of_flight_s"] == pytest.approx(solution.time_of_flight_s, rel=1e-12)
     assert attrs["range_m"] == pytest.approx(solution.impact_range_m[0], abs=1e-6)
@@ -350,7 +350,7 @@ def test_a_launch_outside_the_band_learns_no_table(monkeypatch):
 
     monkeypatch.setattr(calibrated_mks, "_calibration", refuse)
     with pytest.raises(ValueError, match="elevation_deg = 10 deg"):
-        calibrated_mks.solution_for_launch(Launch(BASELINE, BASELINE.launch_speed_m_s, 10.0))
+        calibrated_mks.CalibratedSolution(Launch(BASELINE, BASELINE.launch_speed_m_s, 10.0))
 
 
 def test_a_gun_whose_flights_do_not_land_cannot_be_learned():

@@ -57,7 +57,7 @@ def test_at_its_nodes_the_table_is_the_3dof(
     )
     flight = _quiet(threedof.simulate_3dof, launch, output_step_s=0.5)
     table = flyout_table.simulate_flyout_table(launch, table=coarse_table, n_points=200)
-    solution = flyout_table.solution_for_launch(launch, coarse_table)
+    solution = flyout_table.FlyoutSolution(launch, coarse_table)
     attrs, flown = table.attrs, flight.attrs
     assert attrs["time_of_flight_s"] == pytest.approx(flown["time_of_flight_s"], rel=1e-6)
     assert attrs["range_m"] == pytest.approx(flown["range_m"], abs=0.1)
@@ -88,7 +88,7 @@ def test_between_time_nodes_the_spline_keeps_the_apogee_a_line_would_cut(coarse_
             bearing_deg=0.0,
         )
         apogee = _quiet(threedof.simulate_3dof, launch).attrs["apogee_altitude_m"]
-        solution = flyout_table.solution_for_launch(launch, coarse_table)
+        solution = flyout_table.FlyoutSolution(launch, coarse_table)
         nodes = solution.positions(TIME_NODES * solution.time_of_flight_s)
         launched = np.linalg.norm(nodes[0])
         cuts.append(apogee - (np.linalg.norm(nodes, axis=1).max() - launched))  # a line's, nearly
@@ -109,12 +109,12 @@ def test_between_time_nodes_the_spline_keeps_the_apogee_a_line_would_cut(coarse_
 )
 def test_a_launch_outside_the_band_is_refused_by_name(coarse_table, change, named):
     with pytest.raises(ValueError, match=named):
-        flyout_table.solution_for_launch(BARBADOS.but(**change), coarse_table)
+        flyout_table.FlyoutSolution(BARBADOS.but(**change), coarse_table)
 
 
 def test_the_wind_it_never_flew_is_named():
     with pytest.warns(ModelValidityWarning, match="cross_wind_m_s"):
-        flyout_table.solution_for_launch(
+        flyout_table.FlyoutSolution(
             BARBADOS.but(cross_wind_m_s=5.0), flyout_table.tabulate(Gun.of(BARBADOS), COARSE)
         )
 
@@ -129,7 +129,7 @@ def test_it_converges_on_random_launches_as_its_cells_shrink():
     errors = []
     for scale in (0.35, 0.7, 1.0):
         table = flyout_table.tabulate(gun, flyout_comparison.grid_at(scale))
-        solution = flyout_table.solution_for_launch(judged, table)
+        solution = flyout_table.FlyoutSolution(judged, table)
         errors.append(
             [
                 np.sqrt(

@@ -95,8 +95,8 @@ GUNS: dict[str, Launch] = {
 #: The two tables, by their names in the engines' catalogue: how each is built from a gun's
 #: flights and how it solves launches.
 METHODS: dict[str, tuple[Callable[..., LearnedTable], Callable[..., LearnedSolution]]] = {
-    "calibrated_mks": (calibrated_mks.calibrate, calibrated_mks.solution_for_launch),
-    "flyout_table": (flyout_table.tabulate, flyout_table.solution_for_launch),
+    "calibrated_mks": (calibrated_mks.calibrate, calibrated_mks.CalibratedSolution),
+    "flyout_table": (flyout_table.tabulate, flyout_table.FlyoutSolution),
 }
 #: The grids' scales (:func:`grid_at`): cells shrink as 1/scale along elevation, speed and
 #: bearing; 1 is the engines' default grid.

@@ -127,7 +127,7 @@ def _errors(launch: Launch, truth, model: str, fitted) -> dict:
         truth[["x_m", "y_m", "z_m"]].to_numpy()[-1], launch, truth.time_s.iloc[-1]
     )
     if model == "calibrated":
-        calibrated = calibrated_mks.solution_for_launch(launch)
+        calibrated = calibrated_mks.CalibratedSolution(launch)
         point, apogee = calibrated.impact_point_m, calibrated.apogee_altitude_m
         time = calibrated.time_of_flight_s
     elif model == "eci":

@@ -73,7 +73,6 @@ __all__ = [
     "BAND",
     "calibrate",
     "calibration_for",
-    "solution_for_launch",
     "simulate_calibrated_mks",
     "ENGINE",
 ]
@@ -312,7 +311,17 @@ class CalibratedSolution(LearnedSolution):
     """The calibrated MKS of one launch or many (:class:`~harp_analysis.models.launch.Launches`):
     the ECI MKS underneath with the calibration's time factor and displacements interpolated
     at each launch (:class:`.learned.LearnedSolution`: numbers for a single Launch, arrays (n,)
-    for many; positions in the 3DOF's frame)."""
+    for many; positions in the 3DOF's frame).
+
+    Parameters
+    ----------
+    launch : Launch or Launches
+        Launches of one gun (projectile, site, air model and Earth rotation), within the band
+        the calibration covers (:data:`BAND`).
+    calibration : Calibration, optional
+        What to correct the MKS with; by default the gun's (:func:`calibration_for`, learned
+        on first use).
+    """
 
     ENGINE = ENGINE
 
@@ -365,28 +374,6 @@ class CalibratedSolution(LearnedSolution):
         3DOF's apogees differ from it by (learned as the rest is)."""
         altitude, fraction = (self._base.apogees() + self._apogee).T
         return altitude, fraction
-
-
-def solution_for_launch(
-    launch: Launch | Launches, calibration: Calibration | None = None
-) -> CalibratedSolution:
-    """The calibrated MKS of a launch, or of every launch of a Launches at once.
-
-    Parameters
-    ----------
-    launch : Launch or Launches
-        Launches of one gun (projectile, site, air model and Earth rotation), within the band
-        the calibration covers (:data:`BAND`).
-    calibration : Calibration, optional
-        What to correct the MKS with; by default the gun's (:func:`calibration_for`, learned
-        on first use).
-
-    Returns
-    -------
-    CalibratedSolution
-        Time of flight, apogee, impact point and range, and (for one launch) positions.
-    """
-    return CalibratedSolution(launch, calibration)
 
 
 def simulate_calibrated_mks(

@@ -65,7 +65,6 @@ __all__ = [
     "BAND",
     "tabulate",
     "table_for",
-    "solution_for_launch",
     "simulate_flyout_table",
     "ENGINE",
 ]
@@ -145,7 +144,17 @@ class FlyoutSolution(LearnedSolution):
     (:class:`~harp_analysis.models.launch.Launches`): the time of flight and the positions at
     the time nodes interpolated at each launch, the spline in time between them
     (:class:`.learned.LearnedSolution`: numbers for a single Launch, arrays (n,) for many;
-    positions in the 3DOF's frame)."""
+    positions in the 3DOF's frame).
+
+    Parameters
+    ----------
+    launch : Launch or Launches
+        Launches of one gun (projectile, site, air model and Earth rotation), within the band
+        the table covers (:data:`BAND`).
+    table : FlyoutTable, optional
+        The flights to interpolate; by default the gun's (:func:`table_for`, flown on first
+        use).
+    """
 
     ENGINE = ENGINE
 
@@ -178,28 +187,6 @@ class FlyoutSolution(LearnedSolution):
         """The time node of the largest radius."""
         radius = np.linalg.norm(self._local + [earth.RADIUS_M, 0.0, 0.0], axis=-1)
         return TIME_NODES[np.argmax(radius, axis=1)]
-
-
-def solution_for_launch(
-    launch: Launch | Launches, table: FlyoutTable | None = None
-) -> FlyoutSolution:
-    """The fly-out table's flight of a launch, or of every launch of a Launches at once.
-
-    Parameters
-    ----------
-    launch : Launch or Launches
-        Launches of one gun (projectile, site, air model and Earth rotation), within the band
-        the table covers (:data:`BAND`).
-    table : FlyoutTable, optional
-        The flights to interpolate; by default the gun's (:func:`table_for`, flown on first
-        use).
-
-    Returns
-    -------
-    FlyoutSolution
-        Time of flight, apogee, impact point and range, and (for one launch) positions.
-    """
-    return FlyoutSolution(launch, table)
 
 
 def simulate_flyout_table(

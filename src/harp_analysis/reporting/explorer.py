@@ -430,7 +430,7 @@ def _calibrated_mks(launch: Launch, three: pd.DataFrame) -> Flown:
     _check_calibrated_band(launch)
     calibration = calibrated_mks.calibration_for(launch)
     table = calibrated_mks.simulate_calibrated_mks(launch, calibration=calibration)
-    solution = calibrated_mks.solution_for_launch(launch, calibration)
+    solution = calibrated_mks.CalibratedSolution(launch, calibration)
     return replace(
         _from_table(_CALIBRATED, table),
         error_to_3dof=_distance_to_3dof(three, solution.time_of_flight_s, solution.positions),
