@@ -46,7 +46,7 @@ h = h_inf exp(beta' gamma) gives both the same beta' (eq 3.23); as printed, and 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pandas as pd
@@ -431,15 +431,10 @@ DISSERTATION = EciModel(
     decay="consistent",
     beta_column="beta_cos_mu",
 )
-#: What Appendices D and E's corrected columns describe: no V_tangent, eq 6.14 as printed.
-PRINTED_COLUMNS = EciModel(
-    "printed_columns",
-    include_tangent=False,
-    tangent_sine="gun",
-    beta_elevation="launch",
-    tau_elevation="launch",
-    speed_ratio="corrected",
-    decay="printed",
+#: What Appendices D and E's corrected columns describe: the project's model with no V_tangent
+#: and eq 6.14 as printed.
+PRINTED_COLUMNS = replace(
+    CONSISTENT, name="printed_columns", include_tangent=False, decay="printed"
 )
 MODELS = {model.name: model for model in (DISSERTATION, CONSISTENT, PRINTED_COLUMNS)}
 
