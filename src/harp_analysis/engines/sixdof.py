@@ -44,7 +44,7 @@ angle tangent, inertial velocity), meaningless at the large angles reached above
 atmosphere; rows are written at the first step after each 0.5 s mark.
 
 The no-roll formulation (used by :func:`simulate_6dof`)
------------------------------------------------------
+-------------------------------------------------------
 The fins spin the projectile from 10 rad/s to the roll equilibrium p d / (2V) = -CLDD/CLP
 (about 300 rad/s for HP, 445 for LP) within a second, so body-axis v, w, q, r oscillate at the
 spin rate and an adaptive integrator needs ~1e5+ steps. The projectile is axisymmetric in the
