@@ -407,8 +407,8 @@ class LearnedSolution:
         launch = self.launch
         if not isinstance(launch, Launch):
             raise TypeError(
-                f"launch must be a Launch; got {type(launch).__name__} (a solution of "
-                "Launches solves them together; its table is one launch's)"
+                f"launch must be a Launch; got {type(launch).__name__} (a trajectory table "
+                "is one launch's; a solution of Launches gives their numbers as arrays)"
             )
         times = np.linspace(0.0, float(self.time_of_flight_s), count)
         fractions = np.linspace(0.0, 1.0, count)[None, :]
